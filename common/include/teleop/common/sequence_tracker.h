@@ -1,0 +1,43 @@
+#pragma once
+// Per-stream reception statistics computed from sample sequence numbers and stamps.
+
+#include <cstdint>
+
+#include "teleop/common/histogram.h"
+
+namespace teleop {
+
+/// Tracks one writer's stream as seen by a reader: received, lost (sequence gaps),
+/// duplicated or reordered samples, one-way latency, and the receive rate. Real-time safe.
+class SequenceTracker {
+ public:
+  /// Records a received sample: its sequence number, its source stamp and the local receive
+  /// time, both on the same clock (the latency is their difference).
+  void on_sample(uint64_t seq, int64_t source_stamp_ns, int64_t receive_stamp_ns);
+
+  uint64_t received() const { return received_; }
+  uint64_t first_seq() const { return first_seq_; }
+  uint64_t last_seq() const { return last_seq_; }
+  /// Samples the writer sent between the first and the last one received.
+  uint64_t expected() const { return received_ ? last_seq_ - first_seq_ + 1 : 0; }
+  /// Samples never received within [first_seq, last_seq] (late arrivals are credited back).
+  uint64_t lost() const;
+  uint64_t duplicates() const { return duplicates_; }
+  uint64_t reordered() const { return reordered_; }
+  /// Receive rate over the span between the first and last sample received, in Hz.
+  double rate_hz() const;
+  const DurationHistogram& latency() const { return latency_; }
+  int64_t last_receive_ns() const { return last_receive_ns_; }
+
+ private:
+  uint64_t received_ = 0;
+  uint64_t first_seq_ = 0;
+  uint64_t last_seq_ = 0;
+  uint64_t duplicates_ = 0;
+  uint64_t reordered_ = 0;
+  int64_t first_receive_ns_ = 0;
+  int64_t last_receive_ns_ = 0;
+  DurationHistogram latency_;
+};
+
+}  // namespace teleop

@@ -1,0 +1,245 @@
+#include "teleop/common/config.h"
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+namespace teleop {
+
+// every mapping read from one file, so that unused keys can be found at the end
+struct ConfigNode::FileState {
+  std::string file;
+  std::vector<std::shared_ptr<MappingRecord>> mappings;
+};
+
+struct ConfigNode::MappingRecord {
+  YAML::Node node;
+  std::string path;
+  std::set<std::string> used;
+};
+
+namespace {
+
+std::string format_number(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+std::string describe(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Scalar: return "'" + node.Scalar() + "'";
+    case YAML::NodeType::Sequence: return "a list";
+    case YAML::NodeType::Map: return "a mapping";
+    case YAML::NodeType::Null: return "nothing";
+    default: return "an undefined value";
+  }
+}
+
+}  // namespace
+
+ConfigNode ConfigNode::load_file(const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw ConfigError(path + ": cannot open the file");
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError(path + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
+  }
+  if (!root.IsMap()) throw ConfigError(path + ": the top level must be a mapping of keys");
+  return ConfigNode(std::make_shared<FileState>(FileState{path, {}}), root, "");
+}
+
+ConfigNode ConfigNode::load_string(const std::string& text, const std::string& source_name) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError(source_name + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
+  }
+  if (!root.IsMap()) throw ConfigError(source_name + ": the top level must be a mapping of keys");
+  return ConfigNode(std::make_shared<FileState>(FileState{source_name, {}}), root, "");
+}
+
+ConfigNode::ConfigNode(std::shared_ptr<FileState> state, YAML::Node node, std::string path)
+    : state_(std::move(state)), node_(node), path_(std::move(path)) {
+  record_ = std::make_shared<MappingRecord>(MappingRecord{node_, path_, {}});
+  state_->mappings.push_back(record_);
+}
+
+const std::string& ConfigNode::file() const { return state_->file; }
+
+std::string ConfigNode::key_path(const std::string& key) const {
+  return path_.empty() ? key : path_ + "." + key;
+}
+
+ConfigError ConfigNode::error_at(const YAML::Node& where, const std::string& key,
+                                 const std::string& problem) const {
+  const YAML::Mark mark = where.IsDefined() ? where.Mark() : node_.Mark();
+  std::string location = state_->file;
+  if (mark.line >= 0) location += ":" + std::to_string(mark.line + 1);
+  return ConfigError(location + ": " + key_path(key) + ": " + problem);
+}
+
+ConfigError ConfigNode::error(const std::string& key, const std::string& problem) const {
+  return error_at(lookup(key), key, problem);
+}
+
+YAML::Node ConfigNode::lookup(const std::string& key) const {
+  // a const view, so a missing key does not get inserted
+  const YAML::Node& view = node_;
+  return view[key];
+}
+
+bool ConfigNode::has(const std::string& key) const {
+  const YAML::Node n = lookup(key);
+  return n.IsDefined() && !n.IsNull();
+}
+
+std::vector<std::string> ConfigNode::keys() const {
+  std::vector<std::string> out;
+  for (const auto& entry : node_) out.push_back(entry.first.as<std::string>());
+  return out;
+}
+
+YAML::Node ConfigNode::require(const std::string& key) const {
+  record_->used.insert(key);
+  const YAML::Node n = lookup(key);
+  if (!n.IsDefined()) throw error_at(node_, key, "missing required key");
+  if (n.IsNull()) throw error_at(n, key, "has no value");
+  return n;
+}
+
+template <typename T>
+T ConfigNode::convert_scalar(const YAML::Node& node, const std::string& key, const char* type_name) const {
+  T value{};
+  if (!node.IsScalar() || !YAML::convert<T>::decode(node, value)) {
+    throw error_at(node, key, std::string("expected ") + type_name + ", got " + describe(node));
+  }
+  return value;
+}
+
+void ConfigNode::check_range(const YAML::Node& node, const std::string& key, double value, Range range) const {
+  if (!std::isfinite(value) || value < range.min || value > range.max) {
+    throw error_at(node, key, "value " + node.Scalar() + " is out of range [" + format_number(range.min) + ", " +
+                                  format_number(range.max) + "]");
+  }
+}
+
+ConfigNode ConfigNode::make_child(const YAML::Node& node, const std::string& key) const {
+  if (!node.IsMap()) throw error_at(node, key, "expected a mapping, got " + describe(node));
+  return ConfigNode(state_, node, key_path(key));
+}
+
+ConfigNode ConfigNode::child(const std::string& key) const { return make_child(require(key), key); }
+
+std::optional<ConfigNode> ConfigNode::optional_child(const std::string& key) const {
+  if (!lookup(key).IsDefined()) return std::nullopt;
+  return child(key);
+}
+
+std::string ConfigNode::get_string(const std::string& key) const {
+  return convert_scalar<std::string>(require(key), key, "a string");
+}
+
+bool ConfigNode::get_bool(const std::string& key) const {
+  return convert_scalar<bool>(require(key), key, "true or false");
+}
+
+int64_t ConfigNode::get_int(const std::string& key, Range range) const {
+  const YAML::Node n = require(key);
+  const auto value = convert_scalar<int64_t>(n, key, "an integer");
+  check_range(n, key, static_cast<double>(value), range);
+  return value;
+}
+
+double ConfigNode::get_double(const std::string& key, Range range) const {
+  const YAML::Node n = require(key);
+  const auto value = convert_scalar<double>(n, key, "a number");
+  check_range(n, key, value, range);
+  return value;
+}
+
+std::string ConfigNode::get_string(const std::string& key, const std::string& fallback) const {
+  return lookup(key).IsDefined() ? get_string(key) : (record_->used.insert(key), fallback);
+}
+
+bool ConfigNode::get_bool(const std::string& key, bool fallback) const {
+  return lookup(key).IsDefined() ? get_bool(key) : (record_->used.insert(key), fallback);
+}
+
+int64_t ConfigNode::get_int(const std::string& key, Range range, int64_t fallback) const {
+  return lookup(key).IsDefined() ? get_int(key, range) : (record_->used.insert(key), fallback);
+}
+
+double ConfigNode::get_double(const std::string& key, Range range, double fallback) const {
+  return lookup(key).IsDefined() ? get_double(key, range) : (record_->used.insert(key), fallback);
+}
+
+std::string ConfigNode::get_choice(const std::string& key, const std::vector<std::string>& choices) const {
+  const std::string value = get_string(key);
+  for (const auto& c : choices) {
+    if (c == value) return value;
+  }
+  std::string list;
+  for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
+  throw error_at(lookup(key), key, "'" + value + "' is not one of: " + list);
+}
+
+std::string ConfigNode::get_choice(const std::string& key, const std::vector<std::string>& choices,
+                                   const std::string& fallback) const {
+  return lookup(key).IsDefined() ? get_choice(key, choices) : (record_->used.insert(key), fallback);
+}
+
+std::vector<std::string> ConfigNode::get_string_list(const std::string& key) const {
+  record_->used.insert(key);
+  const YAML::Node n = lookup(key);
+  if (!n.IsDefined() || n.IsNull()) return {};
+  if (!n.IsSequence()) throw error_at(n, key, "expected a list of strings, got " + describe(n));
+  std::vector<std::string> out;
+  for (size_t i = 0; i < n.size(); ++i) {
+    out.push_back(convert_scalar<std::string>(n[i], key + "[" + std::to_string(i) + "]", "a string"));
+  }
+  return out;
+}
+
+std::vector<double> ConfigNode::get_double_list(const std::string& key, Range range) const {
+  record_->used.insert(key);
+  const YAML::Node n = lookup(key);
+  if (!n.IsDefined() || n.IsNull()) return {};
+  if (!n.IsSequence()) throw error_at(n, key, "expected a list of numbers, got " + describe(n));
+  std::vector<double> out;
+  for (size_t i = 0; i < n.size(); ++i) {
+    const std::string item_key = key + "[" + std::to_string(i) + "]";
+    const auto value = convert_scalar<double>(n[i], item_key, "a number");
+    check_range(n[i], item_key, value, range);
+    out.push_back(value);
+  }
+  return out;
+}
+
+std::vector<ConfigNode> ConfigNode::get_node_list(const std::string& key) const {
+  record_->used.insert(key);
+  const YAML::Node n = lookup(key);
+  if (!n.IsDefined() || n.IsNull()) return {};
+  if (!n.IsSequence()) throw error_at(n, key, "expected a list of mappings, got " + describe(n));
+  std::vector<ConfigNode> out;
+  for (size_t i = 0; i < n.size(); ++i) out.push_back(make_child(n[i], key + "[" + std::to_string(i) + "]"));
+  return out;
+}
+
+void ConfigNode::check_all_used() const {
+  for (const auto& mapping : state_->mappings) {
+    for (const auto& entry : mapping->node) {
+      const auto key = entry.first.as<std::string>();
+      if (mapping->used.count(key) == 0) {
+        const std::string path = mapping->path.empty() ? key : mapping->path + "." + key;
+        throw ConfigError(state_->file + ":" + std::to_string(entry.first.Mark().line + 1) + ": " + path +
+                          ": unknown key");
+      }
+    }
+  }
+}
+
+}  // namespace teleop

@@ -1,0 +1,29 @@
+#pragma once
+// What distinguishes the leader, the follower and the twin: their per-cycle work.
+
+#include <cstdint>
+#include <vector>
+
+#include <teleop/msg/status.h>
+
+#include "teleop/common/rate_pacer.h"
+#include "teleop/runtime/node_report.h"
+
+namespace teleop::runtime {
+
+/// The control logic of a node, run by NodeRunner once per cycle.
+class NodeLogic {
+ public:
+  virtual ~NodeLogic() = default;
+
+  /// One control cycle. Real-time: no allocation, no blocking, no exceptions, no logging.
+  virtual void cycle(const CycleTick& tick) = 0;
+  /// The node's state-machine state, published in NodeStatus. Real-time safe.
+  virtual msg::NodeState state() const = 0;
+  /// Active fault codes (msg::FAULT_*), appended to `faults`. Real-time safe once `faults` has capacity.
+  virtual void active_faults(std::vector<uint32_t>& faults) const = 0;
+  /// Adds the node's topics and counters to the final report. Called once after the loop.
+  virtual void fill_report(NodeReport& report) const = 0;
+};
+
+}  // namespace teleop::runtime

@@ -1,0 +1,78 @@
+#pragma once
+// What a node measured during its run, written as YAML at exit for the launcher's summary.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "teleop/common/rate_pacer.h"
+#include "teleop/transport/publication.h"
+#include "teleop/transport/subscription.h"
+
+namespace teleop::runtime {
+
+struct PublishedTopic {
+  std::string topic;
+  uint64_t sent = 0;
+  uint64_t failed = 0;
+};
+
+struct ReceivedTopic {
+  std::string topic;
+  uint64_t received = 0;
+  uint64_t expected = 0;  ///< last_seq - first_seq + 1
+  uint64_t lost = 0;
+  uint64_t duplicates = 0;
+  uint64_t reordered = 0;
+  uint64_t first_seq = 0;
+  uint64_t last_seq = 0;
+  double rate_hz = 0.0;
+  int64_t latency_p50_ns = 0;
+  int64_t latency_p99_ns = 0;
+  int64_t latency_max_ns = 0;
+  uint64_t deadline_missed = 0;
+  uint64_t liveliness_lost = 0;
+};
+
+struct NodeReport {
+  std::string name;
+  std::string role;
+  std::string final_state;
+  double rate_hz = 0.0;
+  double run_time_s = 0.0;
+  uint64_t cycles = 0;
+  uint64_t overruns = 0;
+  uint64_t skipped = 0;
+  int64_t lateness_p50_ns = 0;
+  int64_t lateness_p99_ns = 0;
+  int64_t lateness_max_ns = 0;
+  /// From SIGINT/SIGTERM to the participant being gone [ms]; negative when not signalled.
+  double shutdown_ms = -1.0;
+  std::vector<PublishedTopic> published;
+  std::vector<ReceivedTopic> received;
+  /// Extra per-node figures (name, value), e.g. rejected commands.
+  std::vector<std::pair<std::string, double>> counters;
+
+  void add_loop(const PacerStats& stats);
+
+  template <typename T>
+  void add(const transport::Publication<T>& pub) {
+    published.push_back({pub.topic_name(), pub.sent(), pub.failed()});
+  }
+
+  template <typename T>
+  void add(const transport::Subscription<T>& sub) {
+    received.push_back(received_from(sub.topic_name(), sub.stats(), sub.reader().deadline_missed(),
+                                     sub.reader().liveliness_lost()));
+  }
+
+  static ReceivedTopic received_from(const std::string& topic, const SequenceTracker& stats, uint64_t deadline_missed,
+                                     uint64_t liveliness_lost);
+};
+
+/// Writes the report as YAML. Throws std::runtime_error when the file cannot be written.
+void write_report(const NodeReport& report, const std::string& path);
+/// Reads a report written by write_report. Throws ConfigError on a malformed file.
+NodeReport read_report(const std::string& path);
+
+}  // namespace teleop::runtime

@@ -1,0 +1,30 @@
+#pragma once
+// Publishes NodeStatus at a low rate from inside the control loop.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "teleop/common/rate_pacer.h"
+#include "teleop/runtime/node_logic.h"
+#include "teleop/transport/publication.h"
+
+namespace teleop::runtime {
+
+class StatusPublisher {
+ public:
+  StatusPublisher(transport::Participant& participant, const std::string& node_name, msg::NodeRole role,
+                  double loop_rate_hz, double status_rate_hz);
+
+  /// Publishes when a status period has passed since the last one. Real-time safe.
+  void maybe_publish(const CycleTick& tick, const NodeLogic& logic, const PacerStats& loop);
+  /// Publishes now with the given state (e.g. STATE_STOPPING at shutdown).
+  void publish(msg::NodeState state, const NodeLogic& logic, const PacerStats& loop);
+
+ private:
+  transport::Publication<msg::NodeStatus> publication_;
+  std::vector<uint32_t> faults_;
+  uint64_t cycles_per_status_;
+};
+
+}  // namespace teleop::runtime

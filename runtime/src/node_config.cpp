@@ -1,0 +1,17 @@
+#include "teleop/runtime/node_config.h"
+
+namespace teleop::runtime {
+
+NodeConfig parse_node_config(const ConfigNode& section, const std::string& default_name) {
+  NodeConfig c;
+  c.name = section.get_string("name", default_name);
+  if (c.name.empty() || c.name.size() > 31) throw section.error("name", "must have 1 to 31 characters");
+  c.rate_hz = section.get_double("rate_hz", Range{1, 10'000}, 1000.0);
+  c.status_rate_hz = section.get_double("status_rate_hz", Range{0.1, 100}, 10.0);
+  if (c.status_rate_hz > c.rate_hz) throw section.error("status_rate_hz", "must not exceed rate_hz");
+  c.duration_s = section.get_double("duration_s", Range{0, 1e6}, 0.0);
+  c.max_catch_up_cycles = static_cast<uint64_t>(section.get_int("max_catch_up_cycles", Range{0, 100'000}, 10));
+  return c;
+}
+
+}  // namespace teleop::runtime

@@ -1,0 +1,142 @@
+#include "teleop/runtime/node_runner.h"
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <optional>
+
+#include "teleop/common/clock.h"
+#include "teleop/runtime/shutdown_signal.h"
+#include "teleop/runtime/status_publisher.h"
+#include "teleop/transport/participant_config.h"
+
+namespace teleop::runtime {
+namespace {
+
+struct CommandLine {
+  std::string config_path;
+  std::optional<double> duration_s;
+  std::string report_path;
+  std::string log_level = "info";
+};
+
+const char* state_name(msg::NodeState state) {
+  switch (state) {
+    case msg::STATE_STARTING: return "starting";
+    case msg::STATE_RUNNING: return "running";
+    case msg::STATE_SAFE_HOLD: return "safe_hold";
+    case msg::STATE_FAULT: return "fault";
+    case msg::STATE_STOPPING: return "stopping";
+  }
+  return "unknown";
+}
+
+// everything parsed and validated before anything touches the network
+struct Setup {
+  NodeConfig node;
+  transport::ParticipantConfig transport;
+  LogicBuilder build;
+};
+
+Setup load_setup(const CommandLine& cli, const NodeDescription& description) {
+  const ConfigNode root = ConfigNode::load_file(cli.config_path);
+  Setup setup{parse_node_config(root.child("node"), description.role_name), {}, {}};
+  setup.transport = transport::parse_participant_config(root.child("transport"), setup.node.name);
+  setup.build = description.parse(root);
+  root.check_all_used();
+  if (cli.duration_s) setup.node.duration_s = *cli.duration_s;
+  return setup;
+}
+
+void log_summary(const NodeReport& r) {
+  spdlog::info("{}: {} cycles at {:.0f} Hz, {} overruns, {} skipped, lateness p50 {:.1f} us p99 {:.1f} us max {:.1f} us",
+               r.name, r.cycles, r.rate_hz, r.overruns, r.skipped, r.lateness_p50_ns * 1e-3,
+               r.lateness_p99_ns * 1e-3, r.lateness_max_ns * 1e-3);
+  for (const auto& t : r.received) {
+    spdlog::info("{}: {} received {} of {} ({} lost), {:.1f} Hz, latency p50 {:.1f} us p99 {:.1f} us", r.name, t.topic,
+                 t.received, t.expected, t.lost, t.rate_hz, t.latency_p50_ns * 1e-3, t.latency_p99_ns * 1e-3);
+  }
+}
+
+// the fixed-rate loop; returns the pacer statistics of the run
+void run_loop(const NodeConfig& node, NodeLogic& logic, StatusPublisher& status, RatePacer& pacer) {
+  const int64_t start_ns = monotonic_now_ns();
+  const int64_t end_ns = node.duration_s > 0 ? start_ns + static_cast<int64_t>(node.duration_s * 1e9) : INT64_MAX;
+  pacer.start();
+  while (!shutdown_requested()) {
+    const CycleTick tick = pacer.wait_next();
+    if (shutdown_requested() || tick.now_ns >= end_ns) break;
+    logic.cycle(tick);
+    status.maybe_publish(tick, logic, pacer.stats());
+  }
+}
+
+int run(const CommandLine& cli, const NodeDescription& description) {
+  Setup setup = load_setup(cli, description);
+  const NodeConfig& node = setup.node;
+  spdlog::info("{}: starting ({} Hz, domain {}, {}{})", node.name, node.rate_hz, setup.transport.domain_id,
+               setup.transport.udpv4 ? "udpv4 " : "", setup.transport.shm ? "shm" : "");
+
+  NodeReport report;
+  int64_t started_ns = monotonic_now_ns();
+  {
+    transport::Participant participant(setup.transport);
+    NodeContext context{node, participant};
+    std::unique_ptr<NodeLogic> logic = setup.build(context);
+    StatusPublisher status(participant, node.name, description.role, node.rate_hz, node.status_rate_hz);
+    MonotonicClock clock;
+    RatePacer pacer(clock, node.period_ns(), node.max_catch_up_cycles);
+
+    started_ns = monotonic_now_ns();
+    run_loop(node, *logic, status, pacer);
+    status.publish(msg::STATE_STOPPING, *logic, pacer.stats());
+
+    report.name = node.name;
+    report.role = description.role_name;
+    report.final_state = state_name(logic->state());
+    report.rate_hz = node.rate_hz;
+    report.run_time_s = static_cast<double>(monotonic_now_ns() - started_ns) * 1e-9;
+    report.add_loop(pacer.stats());
+    logic->fill_report(report);
+  }  // the participant and all its entities are deleted here
+  if (const int64_t signalled = shutdown_requested_at_ns(); signalled > 0) {
+    report.shutdown_ms = static_cast<double>(monotonic_now_ns() - signalled) * 1e-6;
+    spdlog::info("{}: shut down {:.1f} ms after the signal", node.name, report.shutdown_ms);
+  }
+  log_summary(report);
+  if (!cli.report_path.empty()) write_report(report, cli.report_path);
+  return 0;
+}
+
+}  // namespace
+
+int run_node(int argc, char** argv, const NodeDescription& description) {
+  CLI::App app{description.summary, "teleop_" + description.role_name};
+  CommandLine cli;
+  app.add_option("-c,--config", cli.config_path, "YAML configuration of this node")->required();
+  app.add_option("-d,--duration", cli.duration_s, "run time in seconds (overrides node.duration_s; 0 = until signalled)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("-r,--report", cli.report_path, "write the run's statistics as YAML to this file at exit");
+  app.add_option("--log-level", cli.log_level, "trace, debug, info, warn, error")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  spdlog::set_level(spdlog::level::from_str(cli.log_level));
+  spdlog::set_pattern("[%H:%M:%S.%e] [%^%l%$] %v");
+  install_shutdown_handlers();
+  try {
+    return run(cli, description);
+  } catch (const ConfigError& e) {
+    spdlog::error("config error: {}", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    spdlog::error("{}: {}", description.role_name, e.what());
+    return 1;
+  }
+}
+
+}  // namespace teleop::runtime

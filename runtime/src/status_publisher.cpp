@@ -1,0 +1,39 @@
+#include "teleop/runtime/status_publisher.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace teleop::runtime {
+
+StatusPublisher::StatusPublisher(transport::Participant& participant, const std::string& node_name,
+                                 msg::NodeRole role, double loop_rate_hz, double status_rate_hz)
+    : publication_(participant, transport::topics::kNodeStatus, node_name),
+      cycles_per_status_(std::max<uint64_t>(1, static_cast<uint64_t>(std::llround(loop_rate_hz / status_rate_hz)))) {
+  publication_.sample().role(role);
+  publication_.sample().loop().rate_hz(loop_rate_hz);
+  faults_.reserve(msg::MAX_FAULTS);
+  publication_.sample().fault_codes().reserve(msg::MAX_FAULTS);
+}
+
+void StatusPublisher::maybe_publish(const CycleTick& tick, const NodeLogic& logic, const PacerStats& loop) {
+  if (tick.index % cycles_per_status_ == 0) publish(logic.state(), logic, loop);
+}
+
+void StatusPublisher::publish(msg::NodeState state, const NodeLogic& logic, const PacerStats& loop) {
+  auto& s = publication_.sample();
+  s.state(state);
+  faults_.clear();
+  logic.active_faults(faults_);
+  s.fault_codes().clear();
+  for (size_t i = 0; i < faults_.size() && i < msg::MAX_FAULTS; ++i) s.fault_codes().push_back(faults_[i]);
+  auto& l = s.loop();
+  l.cycles(loop.cycles);
+  l.overruns(loop.overruns);
+  l.skipped(loop.skipped);
+  l.lateness_p50_ns(loop.lateness.percentile_ns(0.50));
+  l.lateness_p99_ns(loop.lateness.percentile_ns(0.99));
+  l.lateness_max_ns(loop.lateness.max_ns());
+  publication_.publish();
+}
+
+}  // namespace teleop::runtime

@@ -1,0 +1,96 @@
+#pragma once
+// A node's membership in the DDS domain: owns the participant, its publisher, subscriber,
+// topics, writers, readers and their listeners.
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "teleop/transport/participant_config.h"
+#include "teleop/transport/reader.h"
+#include "teleop/transport/topics.h"
+#include "teleop/transport/type_support.h"
+#include "teleop/transport/writer.h"
+
+namespace teleop::transport {
+
+/// Receives every sample of a reader on a Fast DDS thread (callback mode).
+using SampleCallback = std::function<void(const void* sample)>;
+
+class Participant {
+ public:
+  /// Creates the DDS participant. Throws std::runtime_error when DDS refuses the configuration.
+  explicit Participant(const ParticipantConfig& config);
+  ~Participant();
+  Participant(const Participant&) = delete;
+  Participant& operator=(const Participant&) = delete;
+
+  /// A writer on `topic` with the topic's QoS preset. Setup time only.
+  template <typename T>
+  Writer<T> make_writer(const TopicSpec<T>& topic) {
+    auto [writer, status] = create_writer(topic.name, register_type<T>(), topic.qos);
+    return Writer<T>(writer, status);
+  }
+
+  /// A reader on `topic` for non-blocking `take_next` from the control loop. Setup time only.
+  template <typename T>
+  Reader<T> make_reader(const TopicSpec<T>& topic) {
+    auto [reader, status] = create_reader(topic.name, register_type<T>(), topic.qos, nullptr, nullptr);
+    return Reader<T>(reader, status);
+  }
+
+  /// A reader that calls `on_sample` on a Fast DDS thread for every sample received.
+  /// The callback must be thread-safe with respect to whatever it touches.
+  template <typename T>
+  Reader<T> make_reader(const TopicSpec<T>& topic, std::function<void(const T&)> on_sample) {
+    auto sample = std::make_shared<T>();
+    auto take = [sample, cb = std::move(on_sample)](eprosima::fastdds::dds::DataReader* r) {
+      eprosima::fastdds::dds::SampleInfo info;
+      while (r->take_next_sample(sample.get(), &info) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+        if (info.valid_data) cb(*sample);
+      }
+    };
+    auto [reader, status] = create_reader(topic.name, register_type<T>(), topic.qos, std::move(take), sample);
+    return Reader<T>(reader, status);
+  }
+
+  const ParticipantConfig& config() const { return config_; }
+  eprosima::fastdds::dds::DomainParticipant* dds() { return participant_; }
+
+ private:
+  struct WriterListener;
+  struct ReaderListener;
+  using TakeFunction = std::function<void(eprosima::fastdds::dds::DataReader*)>;
+
+  template <typename T>
+  std::string register_type() {
+    eprosima::fastdds::dds::TypeSupport type(new typename PubSubTypeOf<T>::type());
+    return register_type_support(type);
+  }
+  std::string register_type_support(eprosima::fastdds::dds::TypeSupport type);
+  eprosima::fastdds::dds::Topic* topic_for(const std::string& name, const std::string& type_name);
+  std::pair<eprosima::fastdds::dds::DataWriter*, const EndpointStatus*> create_writer(const std::string& topic,
+                                                                                      const std::string& type_name,
+                                                                                      QosPreset preset);
+  std::pair<eprosima::fastdds::dds::DataReader*, const EndpointStatus*> create_reader(
+      const std::string& topic, const std::string& type_name, QosPreset preset, TakeFunction take,
+      std::shared_ptr<void> keep_alive);
+
+  ParticipantConfig config_;
+  eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
+  eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
+  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
+  std::vector<std::unique_ptr<WriterListener>> writer_listeners_;
+  std::vector<std::unique_ptr<ReaderListener>> reader_listeners_;
+};
+
+}  // namespace teleop::transport

@@ -1,0 +1,50 @@
+#pragma once
+// A writer plus its preallocated sample and header bookkeeping: the loop fills the payload,
+// `publish()` stamps sequence number and times and sends.
+
+#include <cstdint>
+#include <string>
+
+#include "teleop/common/clock.h"
+#include "teleop/transport/participant.h"
+
+namespace teleop::transport {
+
+template <typename T>
+class Publication {
+ public:
+  /// Setup time: creates the writer. `source` (the node name) goes into every header.
+  Publication(Participant& participant, const TopicSpec<T>& topic, const std::string& source)
+      : topic_name_(topic.name), writer_(participant.make_writer(topic)) {
+    sample_.header().source(source.c_str());
+  }
+
+  /// The sample to fill before publishing; keeps its contents between cycles.
+  T& sample() { return sample_; }
+
+  /// Stamps the header (next sequence number, system and monotonic time) and sends.
+  /// Real-time safe. Returns false if DDS refused the sample (counted).
+  bool publish() {
+    auto& header = sample_.header();
+    header.seq(++sent_);
+    header.stamp_ns(system_now_ns());
+    header.stamp_mono_ns(monotonic_now_ns());
+    if (writer_.write(sample_)) return true;
+    ++failed_;
+    return false;
+  }
+
+  const std::string& topic_name() const { return topic_name_; }
+  uint64_t sent() const { return sent_; }
+  uint64_t failed() const { return failed_; }
+  int32_t matched() const { return writer_.matched(); }
+
+ private:
+  std::string topic_name_;
+  Writer<T> writer_;
+  T sample_;
+  uint64_t sent_ = 0;
+  uint64_t failed_ = 0;
+};
+
+}  // namespace teleop::transport

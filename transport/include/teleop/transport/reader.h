@@ -1,0 +1,40 @@
+#pragma once
+// Typed, non-owning handle to a DDS reader. The Participant owns the entity and outlives it.
+
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+
+#include "teleop/transport/endpoint_status.h"
+
+namespace teleop::transport {
+
+template <typename T>
+class Reader {
+ public:
+  Reader() = default;
+  Reader(eprosima::fastdds::dds::DataReader* reader, const EndpointStatus* status) : reader_(reader), status_(status) {}
+
+  /// Non-blocking: moves the oldest unread sample into `out`. Returns false when there is none.
+  /// Does not allocate once `out`'s sequences have reached their working size.
+  [[nodiscard]] bool take_next(T& out) {
+    eprosima::fastdds::dds::SampleInfo info;
+    while (reader_->take_next_sample(&out, &info) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+      // skip state-only notifications (e.g. a writer's disposal) that carry no data
+      if (info.valid_data) return true;
+    }
+    return false;
+  }
+
+  int32_t matched() const { return status_->matched.load(std::memory_order_relaxed); }
+  /// Remote writers whose liveliness is currently asserted.
+  int32_t alive_writers() const { return status_->alive.load(std::memory_order_relaxed); }
+  uint64_t liveliness_lost() const { return status_->liveliness_lost.load(std::memory_order_relaxed); }
+  uint64_t deadline_missed() const { return status_->deadline_missed.load(std::memory_order_relaxed); }
+  bool valid() const { return reader_ != nullptr; }
+
+ private:
+  eprosima::fastdds::dds::DataReader* reader_ = nullptr;
+  const EndpointStatus* status_ = nullptr;
+};
+
+}  // namespace teleop::transport

@@ -1,0 +1,43 @@
+#pragma once
+// Every topic of the system, in one place, typed: a topic can only be used with its sample type.
+
+#include <teleop/msg/arm.h>
+#include <teleop/msg/hand.h>
+#include <teleop/msg/status.h>
+
+#include "teleop/transport/qos.h"
+
+namespace teleop::transport {
+
+template <typename T>
+struct TopicSpec {
+  using Sample = T;
+  const char* name;
+  QosPreset qos;
+};
+
+namespace topics {
+
+// leader station -> follower robot: the operator's commanded motion
+inline constexpr TopicSpec<msg::JointCommand> kLeaderCommand{"teleop/leader/joint_command", QosPreset::kStream};
+// leader device state (for the twin in model-mediated teleoperation)
+inline constexpr TopicSpec<msg::JointState> kLeaderState{"teleop/leader/joint_state", QosPreset::kStream};
+// follower robot -> everyone: measured state and estimated external wrench
+inline constexpr TopicSpec<msg::JointState> kFollowerState{"teleop/follower/joint_state", QosPreset::kStream};
+inline constexpr TopicSpec<msg::WrenchStamped> kFollowerWrench{"teleop/follower/wrench", QosPreset::kStream};
+// twin -> leader: rendered constraint torque (haptic feedback) and the twin's own state
+inline constexpr TopicSpec<msg::JointTorque> kTwinFeedback{"teleop/twin/feedback_torque", QosPreset::kStream};
+inline constexpr TopicSpec<msg::JointState> kTwinState{"teleop/twin/joint_state", QosPreset::kStream};
+// hand
+inline constexpr TopicSpec<msg::HandCommand> kHandCommand{"teleop/hand/command", QosPreset::kStream};
+inline constexpr TopicSpec<msg::HandState> kHandState{"teleop/hand/state", QosPreset::kStream};
+// passivity energy packets, one topic per direction
+inline constexpr TopicSpec<msg::TdpaEnergy> kTdpaLeaderToFollower{"teleop/tdpa/leader_to_follower",
+                                                                  QosPreset::kStream};
+inline constexpr TopicSpec<msg::TdpaEnergy> kTdpaFollowerToLeader{"teleop/tdpa/follower_to_leader",
+                                                                  QosPreset::kStream};
+// node health, one topic for all nodes (the header's source says who)
+inline constexpr TopicSpec<msg::NodeStatus> kNodeStatus{"teleop/node_status", QosPreset::kState};
+
+}  // namespace topics
+}  // namespace teleop::transport

@@ -1,0 +1,31 @@
+#pragma once
+// Maps each sample type to its fastddsgen-generated type support.
+
+#include <teleop/msg/armPubSubTypes.h>
+#include <teleop/msg/handPubSubTypes.h>
+#include <teleop/msg/statusPubSubTypes.h>
+
+namespace teleop::transport {
+
+template <typename T>
+struct PubSubTypeOf;
+
+#define TELEOP_PUBSUB_TYPE(Msg)            \
+  template <>                              \
+  struct PubSubTypeOf<msg::Msg> {          \
+    using type = msg::Msg##PubSubType;     \
+  };
+
+TELEOP_PUBSUB_TYPE(JointState)
+TELEOP_PUBSUB_TYPE(JointCommand)
+TELEOP_PUBSUB_TYPE(CartesianCommand)
+TELEOP_PUBSUB_TYPE(WrenchStamped)
+TELEOP_PUBSUB_TYPE(JointTorque)
+TELEOP_PUBSUB_TYPE(HandCommand)
+TELEOP_PUBSUB_TYPE(HandState)
+TELEOP_PUBSUB_TYPE(NodeStatus)
+TELEOP_PUBSUB_TYPE(TdpaEnergy)
+
+#undef TELEOP_PUBSUB_TYPE
+
+}  // namespace teleop::transport

@@ -1,0 +1,33 @@
+#pragma once
+// Typed, non-owning handle to a DDS writer. The Participant owns the entity and outlives it.
+
+#include <fastdds/dds/publisher/DataWriter.hpp>
+
+#include "teleop/transport/endpoint_status.h"
+
+namespace teleop::transport {
+
+template <typename T>
+class Writer {
+ public:
+  Writer() = default;
+  Writer(eprosima::fastdds::dds::DataWriter* writer, const EndpointStatus* status) : writer_(writer), status_(status) {}
+
+  /// Sends one sample. Real-time safe for the stream preset (best effort, preallocated
+  /// payloads, synchronous UDP send). Returns false if DDS refused the sample.
+  [[nodiscard]] bool write(const T& sample) {
+    // Fast DDS 2.9 takes a non-const pointer but does not modify the sample
+    return writer_->write(const_cast<T*>(&sample));
+  }
+
+  /// Readers currently matched.
+  int32_t matched() const { return status_->matched.load(std::memory_order_relaxed); }
+  uint64_t deadline_missed() const { return status_->deadline_missed.load(std::memory_order_relaxed); }
+  bool valid() const { return writer_ != nullptr; }
+
+ private:
+  eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
+  const EndpointStatus* status_ = nullptr;
+};
+
+}  // namespace teleop::transport

@@ -1,0 +1,152 @@
+#include "teleop/transport/participant.h"
+
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
+#include <fastdds/dds/publisher/DataWriterListener.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
+#include <fastrtps/utils/IPLocator.h>
+
+#include <stdexcept>
+
+#include "teleop/transport/qos.h"
+
+namespace teleop::transport {
+namespace dds = eprosima::fastdds::dds;
+using eprosima::fastrtps::rtps::IPLocator;
+using eprosima::fastrtps::rtps::Locator_t;
+
+struct Participant::WriterListener : dds::DataWriterListener {
+  EndpointStatus status;
+  void on_publication_matched(dds::DataWriter*, const dds::PublicationMatchedStatus& s) override {
+    status.matched.store(s.current_count, std::memory_order_relaxed);
+  }
+  void on_offered_deadline_missed(dds::DataWriter*, const dds::OfferedDeadlineMissedStatus&) override {
+    status.deadline_missed.fetch_add(1, std::memory_order_relaxed);
+  }
+};
+
+struct Participant::ReaderListener : dds::DataReaderListener {
+  EndpointStatus status;
+  TakeFunction take;               // set in callback mode only
+  std::shared_ptr<void> keep_alive;  // the sample buffer the callback takes into
+  void on_data_available(dds::DataReader* reader) override {
+    if (take) take(reader);
+  }
+  void on_subscription_matched(dds::DataReader*, const dds::SubscriptionMatchedStatus& s) override {
+    status.matched.store(s.current_count, std::memory_order_relaxed);
+  }
+  void on_liveliness_changed(dds::DataReader*, const dds::LivelinessChangedStatus& s) override {
+    status.alive.store(s.alive_count, std::memory_order_relaxed);
+    if (s.not_alive_count_change > 0) {
+      status.liveliness_lost.fetch_add(static_cast<uint64_t>(s.not_alive_count_change), std::memory_order_relaxed);
+    }
+  }
+  void on_requested_deadline_missed(dds::DataReader*, const dds::RequestedDeadlineMissedStatus&) override {
+    status.deadline_missed.fetch_add(1, std::memory_order_relaxed);
+  }
+};
+
+namespace {
+
+Locator_t peer_locator(const std::string& peer) {
+  Locator_t loc;
+  const auto colon = peer.rfind(':');
+  IPLocator::setIPv4(loc, peer.substr(0, colon));
+  // port 0: Fast DDS fills in the domain's well-known discovery ports for the first participants
+  loc.port = colon == std::string::npos ? 0 : static_cast<uint32_t>(std::stoul(peer.substr(colon + 1)));
+  return loc;
+}
+
+dds::DomainParticipantQos participant_qos(const ParticipantConfig& config) {
+  dds::DomainParticipantQos qos = dds::PARTICIPANT_QOS_DEFAULT;
+  qos.name(config.name);
+  qos.transport().use_builtin_transports = false;
+  if (config.shm) {
+    qos.transport().user_transports.push_back(std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
+  }
+  if (config.udpv4) {
+    auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
+    for (const auto& itf : config.interface_whitelist) udp->interfaceWhiteList.push_back(itf);
+    qos.transport().user_transports.push_back(udp);
+  }
+  for (const auto& peer : config.initial_peers) {
+    qos.wire_protocol().builtin.initialPeersList.push_back(peer_locator(peer));
+  }
+  auto& discovery = qos.wire_protocol().builtin.discovery_config;
+  discovery.leaseDuration = to_dds_duration(config.participant_lease_ns);
+  discovery.leaseDuration_announcementperiod = to_dds_duration(config.participant_lease_ns / 3);
+  return qos;
+}
+
+}  // namespace
+
+Participant::Participant(const ParticipantConfig& config) : config_(config) {
+  auto* factory = dds::DomainParticipantFactory::get_instance();
+  participant_ = factory->create_participant(static_cast<dds::DomainId_t>(config.domain_id), participant_qos(config));
+  if (participant_ == nullptr) {
+    throw std::runtime_error("DDS refused to create participant '" + config.name + "' in domain " +
+                             std::to_string(config.domain_id));
+  }
+  publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
+  subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
+  if (publisher_ == nullptr || subscriber_ == nullptr) {
+    throw std::runtime_error("DDS refused to create the publisher/subscriber of '" + config.name + "'");
+  }
+}
+
+Participant::~Participant() {
+  if (participant_ == nullptr) return;
+  // entities go before their listeners, the participant last
+  participant_->delete_contained_entities();
+  dds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
+}
+
+std::string Participant::register_type_support(dds::TypeSupport type) {
+  const std::string name = type.get_type_name();
+  if (participant_->find_type(name).empty()) {
+    if (type.register_type(participant_) != eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+      throw std::runtime_error("DDS refused to register type " + name);
+    }
+  }
+  return name;
+}
+
+dds::Topic* Participant::topic_for(const std::string& name, const std::string& type_name) {
+  auto it = topics_.find(name);
+  if (it != topics_.end()) return it->second;
+  dds::Topic* topic = participant_->create_topic(name, type_name, dds::TOPIC_QOS_DEFAULT);
+  if (topic == nullptr) throw std::runtime_error("DDS refused to create topic " + name);
+  topics_.emplace(name, topic);
+  return topic;
+}
+
+std::pair<dds::DataWriter*, const EndpointStatus*> Participant::create_writer(const std::string& topic,
+                                                                              const std::string& type_name,
+                                                                              QosPreset preset) {
+  auto listener = std::make_unique<WriterListener>();
+  dds::DataWriter* writer =
+      publisher_->create_datawriter(topic_for(topic, type_name), writer_qos(preset, config_), listener.get());
+  if (writer == nullptr) throw std::runtime_error("DDS refused to create a writer on " + topic);
+  const EndpointStatus* status = &listener->status;
+  writer_listeners_.push_back(std::move(listener));
+  return {writer, status};
+}
+
+std::pair<dds::DataReader*, const EndpointStatus*> Participant::create_reader(const std::string& topic,
+                                                                              const std::string& type_name,
+                                                                              QosPreset preset, TakeFunction take,
+                                                                              std::shared_ptr<void> keep_alive) {
+  auto listener = std::make_unique<ReaderListener>();
+  listener->take = std::move(take);
+  listener->keep_alive = std::move(keep_alive);
+  dds::DataReader* reader =
+      subscriber_->create_datareader(topic_for(topic, type_name), reader_qos(preset, config_), listener.get());
+  if (reader == nullptr) throw std::runtime_error("DDS refused to create a reader on " + topic);
+  const EndpointStatus* status = &listener->status;
+  reader_listeners_.push_back(std::move(listener));
+  return {reader, status};
+}
+
+}  // namespace teleop::transport

@@ -1,0 +1,68 @@
+#include "teleop/transport/qos.h"
+
+namespace teleop::transport {
+namespace dds = eprosima::fastdds::dds;
+using eprosima::fastrtps::Duration_t;
+
+Duration_t to_dds_duration(int64_t ns) {
+  return Duration_t(static_cast<int32_t>(ns / 1'000'000'000), static_cast<uint32_t>(ns % 1'000'000'000));
+}
+
+namespace {
+
+// the parts that writers and readers share
+template <typename Qos>
+void apply_common(Qos& qos, QosPreset preset, const ParticipantConfig& config) {
+  qos.history().kind = dds::KEEP_LAST_HISTORY_QOS;
+  qos.history().depth = 1;
+  qos.liveliness().kind = dds::AUTOMATIC_LIVELINESS_QOS;
+  qos.liveliness().lease_duration = to_dds_duration(config.liveliness_lease_ns);
+  qos.data_sharing().off();
+  // payloads preallocated at their bounded maximum: no allocation per sample
+  qos.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
+  switch (preset) {
+    case QosPreset::kStream:
+      qos.reliability().kind = dds::BEST_EFFORT_RELIABILITY_QOS;
+      qos.durability().kind = dds::VOLATILE_DURABILITY_QOS;
+      qos.deadline().period = to_dds_duration(config.stream_deadline_ns);
+      break;
+    case QosPreset::kState:
+      qos.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
+      qos.durability().kind = dds::TRANSIENT_LOCAL_DURABILITY_QOS;
+      break;
+  }
+}
+
+}  // namespace
+
+const char* to_string(QosPreset preset) {
+  switch (preset) {
+    case QosPreset::kStream: return "stream";
+    case QosPreset::kState: return "state";
+  }
+  return "?";
+}
+
+dds::DataWriterQos writer_qos(QosPreset preset, const ParticipantConfig& config) {
+  dds::DataWriterQos qos = dds::DATAWRITER_QOS_DEFAULT;
+  apply_common(qos, preset, config);
+  // assert liveliness three times per lease so one lost announcement is not a death
+  qos.liveliness().announcement_period = to_dds_duration(config.liveliness_lease_ns / 3);
+  // sending from the control thread itself: one sendto() per sample, no extra hand-off
+  qos.publish_mode().kind = dds::SYNCHRONOUS_PUBLISH_MODE;
+  if (preset == QosPreset::kState) {
+    // the 3 s default would leave a lost state sample unrepaired for seconds
+    qos.reliable_writer_qos().times.heartbeatPeriod = to_dds_duration(100'000'000);
+    // a reliable write never blocks the loop for long when the history is full
+    qos.reliability().max_blocking_time = to_dds_duration(100'000);
+  }
+  return qos;
+}
+
+dds::DataReaderQos reader_qos(QosPreset preset, const ParticipantConfig& config) {
+  dds::DataReaderQos qos = dds::DATAREADER_QOS_DEFAULT;
+  apply_common(qos, preset, config);
+  return qos;
+}
+
+}  // namespace teleop::transport
