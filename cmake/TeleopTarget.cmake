@@ -1,10 +1,10 @@
 # Common settings of every teleop target: warnings on, public headers under include/.
 
-# teleop_library(NAME <name> SOURCES ... DEPENDS ...) defines teleop_<name> (alias teleop::<name>)
+# teleop_library(NAME <name> SOURCES ... DEPENDS ...) defines teleop_<name>_lib (alias teleop::<name>)
 # with public headers in <dir>/include.
 function(teleop_library)
   cmake_parse_arguments(ARG "" "NAME" "SOURCES;DEPENDS;PRIVATE_DEPENDS" ${ARGN})
-  set(target teleop_${ARG_NAME})
+  set(target teleop_${ARG_NAME}_lib)
   add_library(${target} ${ARG_SOURCES})
   add_library(teleop::${ARG_NAME} ALIAS ${target})
   target_include_directories(${target} PUBLIC

@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <sys/prctl.h>
+
 #include <cmath>
 #include <optional>
 
@@ -128,6 +130,8 @@ int run_node(int argc, char** argv, const NodeDescription& description) {
   spdlog::set_level(spdlog::level::from_str(cli.log_level));
   spdlog::set_pattern("[%H:%M:%S.%e] [%^%l%$] %v");
   install_shutdown_handlers();
+  // wake up at the deadline, not up to 50 us later (the kernel's default timer slack)
+  prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
   try {
     return run(cli, description);
   } catch (const ConfigError& e) {

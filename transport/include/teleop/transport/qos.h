@@ -18,6 +18,9 @@ enum class QosPreset {
   kState,
 };
 
+/// Samples a stream reader keeps between two polls of its loop.
+constexpr int32_t kStreamReaderDepth = 16;
+
 const char* to_string(QosPreset preset);
 
 /// A duration in ns as DDS wants it.

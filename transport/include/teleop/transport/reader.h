@@ -14,15 +14,24 @@ class Reader {
   Reader() = default;
   Reader(eprosima::fastdds::dds::DataReader* reader, const EndpointStatus* status) : reader_(reader), status_(status) {}
 
-  /// Non-blocking: moves the oldest unread sample into `out`. Returns false when there is none.
+  /// Non-blocking: moves the oldest unread sample into `out` and the time DDS received it
+  /// (CLOCK_REALTIME ns) into `reception_ns`. Returns false when there is none.
   /// Does not allocate once `out`'s sequences have reached their working size.
-  [[nodiscard]] bool take_next(T& out) {
+  [[nodiscard]] bool take_next(T& out, int64_t& reception_ns) {
     eprosima::fastdds::dds::SampleInfo info;
     while (reader_->take_next_sample(&out, &info) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
       // skip state-only notifications (e.g. a writer's disposal) that carry no data
-      if (info.valid_data) return true;
+      if (info.valid_data) {
+        reception_ns = info.reception_timestamp.to_ns();
+        return true;
+      }
     }
     return false;
+  }
+
+  [[nodiscard]] bool take_next(T& out) {
+    int64_t ignored = 0;
+    return take_next(out, ignored);
   }
 
   int32_t matched() const { return status_->matched.load(std::memory_order_relaxed); }

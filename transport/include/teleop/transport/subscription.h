@@ -23,9 +23,11 @@ class Subscription {
   /// the newest as `latest()`. Non-blocking and real-time safe. Returns the number taken.
   int poll() {
     int taken = 0;
-    while (reader_.take_next(incoming_)) {
+    int64_t reception_ns = 0;
+    while (reader_.take_next(incoming_, reception_ns)) {
       const auto& header = incoming_.header();
-      tracker_.on_sample(header.seq(), header.stamp_ns(), system_now_ns());
+      // latency of the transport itself: source stamp to DDS reception, not to this poll
+      tracker_.on_sample(header.seq(), header.stamp_ns(), reception_ns);
       if (!has_sample_ || header.seq() > latest_.header().seq()) {
         // swap, not copy: both buffers keep their capacity, nothing is allocated
         std::swap(latest_, incoming_);

@@ -1,0 +1,22 @@
+#pragma once
+// Reading per-joint lists from configuration.
+
+#include <string>
+
+#include "teleop/common/config.h"
+#include "teleop/common/joint_model.h"
+
+namespace teleop {
+
+/// Reads `key` as a list of exactly `joints` numbers within `range`; every joint gets
+/// `fallback` when the key is absent. Throws ConfigError naming the key otherwise.
+JointVector read_joint_list(const ConfigNode& section, const std::string& key, size_t joints, Range range,
+                            double fallback);
+
+/// Reads the number-of-joints key `joints` (1..kMaxJoints).
+size_t read_joint_count(const ConfigNode& section);
+
+/// Reads the `model:` part every simulated joint space has (inertia, friction, wall).
+JointModelParams read_joint_model(const ConfigNode& section, size_t joints);
+
+}  // namespace teleop

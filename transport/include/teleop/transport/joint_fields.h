@@ -1,0 +1,31 @@
+#pragma once
+// Copies between fixed-size joint vectors and the bounded sequences of the samples.
+
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+#include "teleop/common/joint_model.h"
+
+namespace teleop::transport {
+
+/// Writes the first n values into `out` (resized to n; no allocation once its capacity is n).
+inline void copy_joints(const JointVector& in, size_t n, std::vector<double>& out) {
+  out.resize(n);
+  std::copy_n(in.begin(), n, out.begin());
+}
+
+/// Reads a sequence into a joint vector. Returns false when its length is not n.
+[[nodiscard]] inline bool read_joints(const std::vector<double>& in, size_t n, JointVector& out) {
+  if (in.size() != n || n > out.size()) return false;
+  std::copy_n(in.begin(), n, out.begin());
+  return true;
+}
+
+/// Sizes every sequence of a sample once at setup so that the loop never allocates.
+template <typename... Seq>
+void presize(size_t n, Seq&... sequences) {
+  (sequences.resize(n), ...);
+}
+
+}  // namespace teleop::transport
