@@ -19,6 +19,7 @@ namespace {
 struct CommandLine {
   std::string config_path;
   std::optional<double> duration_s;
+  std::optional<int> domain_id;
   std::string report_path;
   std::string log_level = "info";
 };
@@ -48,6 +49,7 @@ Setup load_setup(const CommandLine& cli, const NodeDescription& description) {
   setup.build = description.parse(root);
   root.check_all_used();
   if (cli.duration_s) setup.node.duration_s = *cli.duration_s;
+  if (cli.domain_id) setup.transport.domain_id = *cli.domain_id;
   return setup;
 }
 
@@ -119,6 +121,7 @@ int run_node(int argc, char** argv, const NodeDescription& description) {
   app.add_option("-c,--config", cli.config_path, "YAML configuration of this node")->required();
   app.add_option("-d,--duration", cli.duration_s, "run time in seconds (overrides node.duration_s; 0 = until signalled)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--domain", cli.domain_id, "DDS domain id (overrides transport.domain_id)")->check(CLI::Range(0, 232));
   app.add_option("-r,--report", cli.report_path, "write the run's statistics as YAML to this file at exit");
   app.add_option("--log-level", cli.log_level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));

@@ -1,0 +1,173 @@
+#include "teleop/launcher/launcher.h"
+
+#include <poll.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+
+#include "teleop/common/clock.h"
+#include "teleop/launcher/child_process.h"
+#include "teleop/runtime/shutdown_signal.h"
+
+namespace teleop::launcher {
+namespace fs = std::filesystem;
+namespace {
+
+struct RunningNode {
+  const NodeLaunch* spec;
+  ChildProcess process;
+  std::string report_path;
+};
+
+bool is_executable(const fs::path& p) { return fs::is_regular_file(p) && access(p.c_str(), X_OK) == 0; }
+
+std::string make_report_dir(const std::string& requested) {
+  if (!requested.empty()) {
+    fs::create_directories(requested);
+    return requested;
+  }
+  std::string pattern = (fs::temp_directory_path() / "teleop-run-XXXXXX").string();
+  if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("cannot create a report directory in /tmp");
+  return pattern;
+}
+
+void forward_output(RunningNode& node) {
+  node.process.read_output([&](std::string_view line) {
+    std::printf("[%-8s] %.*s\n", node.spec->name.c_str(), static_cast<int>(line.size()), line.data());
+  });
+  std::fflush(stdout);
+}
+
+// waits up to 50 ms for output from any node and forwards it
+void pump_output(std::vector<RunningNode>& nodes) {
+  std::vector<pollfd> fds;
+  for (auto& n : nodes) {
+    if (n.process.output_fd() >= 0) fds.push_back({n.process.output_fd(), POLLIN, 0});
+  }
+  if (fds.empty()) {
+    usleep(50'000);
+  } else {
+    poll(fds.data(), fds.size(), 50);
+  }
+  for (auto& n : nodes) forward_output(n);
+}
+
+std::vector<RunningNode> start_nodes(const Scenario& scenario, const LaunchOptions& options,
+                                     const std::string& report_dir) {
+  std::vector<RunningNode> nodes;
+  for (const auto& spec : scenario.nodes) {
+    const std::string report = (fs::path(report_dir) / (spec.name + ".yaml")).string();
+    std::vector<std::string> argv{find_executable(spec.executable, options.bin_dir), "--config", spec.config,
+                                  "--report", report};
+    if (options.domain_id) {
+      argv.push_back("--domain");
+      argv.push_back(std::to_string(*options.domain_id));
+    }
+    argv.insert(argv.end(), spec.args.begin(), spec.args.end());
+    std::printf("[launch  ] starting %s: %s --config %s\n", spec.name.c_str(), argv[0].c_str(), spec.config.c_str());
+    nodes.push_back({&spec, ChildProcess::spawn(argv), report});
+  }
+  return nodes;
+}
+
+// runs until the duration is over, a signal arrives, or a node exits; true if a node failed
+bool supervise(std::vector<RunningNode>& nodes, double duration_s) {
+  const int64_t end_ns = duration_s > 0 ? monotonic_now_ns() + static_cast<int64_t>(duration_s * 1e9) : INT64_MAX;
+  while (!runtime::shutdown_requested() && monotonic_now_ns() < end_ns) {
+    pump_output(nodes);
+    for (auto& n : nodes) {
+      if (auto status = n.process.try_wait()) {
+        std::printf("[launch  ] %s exited early with status %d: stopping the others\n", n.spec->name.c_str(), *status);
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+// SIGTERM to all, wait for them (forwarding their last words), SIGKILL what is left
+bool stop_nodes(std::vector<RunningNode>& nodes, double stop_timeout_s) {
+  for (auto& n : nodes) n.process.signal(SIGTERM);
+  const int64_t deadline = monotonic_now_ns() + static_cast<int64_t>(stop_timeout_s * 1e9);
+  auto all_exited = [&] {
+    bool all = true;
+    for (auto& n : nodes) all = n.process.try_wait().has_value() && all;
+    return all;
+  };
+  while (!all_exited() && monotonic_now_ns() < deadline) pump_output(nodes);
+  bool clean = true;
+  for (auto& n : nodes) {
+    if (!n.process.try_wait()) {
+      std::printf("[launch  ] %s did not stop within %.1f s: killed\n", n.spec->name.c_str(), stop_timeout_s);
+      n.process.signal(SIGKILL);
+      n.process.wait_for(1000);
+      clean = false;
+    } else if (*n.process.exit_status() != 0) {
+      std::printf("[launch  ] %s exited with status %d\n", n.spec->name.c_str(), *n.process.exit_status());
+      clean = false;
+    }
+  }
+  // drain whatever is left in the pipes
+  for (int i = 0; i < 3; ++i) pump_output(nodes);
+  return clean;
+}
+
+}  // namespace
+
+std::string find_executable(const std::string& name, const std::string& bin_dir) {
+  if (name.find('/') != std::string::npos) {
+    if (is_executable(name)) return name;
+    throw std::runtime_error("node executable " + name + " not found");
+  }
+  std::vector<fs::path> candidates;
+  if (!bin_dir.empty()) candidates.push_back(fs::path(bin_dir) / name);
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) candidates.push_back(self.parent_path() / name);
+  if (const char* path = std::getenv("PATH")) {
+    std::string_view rest(path);
+    while (!rest.empty()) {
+      const auto colon = rest.find(':');
+      candidates.push_back(fs::path(std::string(rest.substr(0, colon))) / name);
+      rest = colon == std::string_view::npos ? std::string_view{} : rest.substr(colon + 1);
+    }
+  }
+  for (const auto& c : candidates) {
+    if (is_executable(c)) return c.string();
+  }
+  throw std::runtime_error("node executable " + name + " not found next to the launcher or on PATH");
+}
+
+LaunchResult launch(const Scenario& scenario, const LaunchOptions& options) {
+  LaunchResult result;
+  result.report_dir = make_report_dir(options.report_dir);
+  const double duration_s = options.duration_s.value_or(scenario.duration_s);
+  runtime::install_shutdown_handlers();
+
+  std::vector<RunningNode> nodes = start_nodes(scenario, options, result.report_dir);
+  std::printf("[launch  ] %zu nodes running for %s\n", nodes.size(),
+              duration_s > 0 ? (std::to_string(duration_s) + " s").c_str() : "until Ctrl-C");
+  const bool failed = supervise(nodes, duration_s);
+  const bool clean = stop_nodes(nodes, scenario.stop_timeout_s);
+
+  std::vector<runtime::NodeReport> reports;
+  bool all_reported = true;
+  for (const auto& n : nodes) {
+    if (fs::exists(n.report_path)) {
+      reports.push_back(runtime::read_report(n.report_path));
+    } else {
+      std::printf("[launch  ] %s wrote no report\n", n.spec->name.c_str());
+      all_reported = false;
+    }
+  }
+  result.summary = summarize(std::move(reports));
+  result.exit_code = (!failed && clean && all_reported) ? 0 : 1;
+  return result;
+}
+
+}  // namespace teleop::launcher

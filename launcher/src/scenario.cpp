@@ -1,0 +1,37 @@
+#include "teleop/launcher/scenario.h"
+
+#include <filesystem>
+#include <set>
+
+#include "teleop/common/config.h"
+
+namespace teleop::launcher {
+namespace fs = std::filesystem;
+
+Scenario load_scenario(const std::string& path) {
+  const ConfigNode root = ConfigNode::load_file(path);
+  const ConfigNode s = root.child("scenario");
+  Scenario scenario;
+  scenario.file = path;
+  scenario.name = s.get_string("name");
+  scenario.duration_s = s.get_double("duration_s", Range{0, 1e6}, scenario.duration_s);
+  scenario.stop_timeout_s = s.get_double("stop_timeout_s", Range{0.1, 600}, scenario.stop_timeout_s);
+  const fs::path base = fs::path(path).parent_path();
+  std::set<std::string> names;
+  for (const ConfigNode& n : root.get_node_list("nodes")) {
+    NodeLaunch node;
+    node.name = n.get_string("name");
+    if (!names.insert(node.name).second) throw n.error("name", "'" + node.name + "' is used by two nodes");
+    node.executable = n.get_string("executable");
+    const fs::path config = n.get_string("config");
+    node.config = (config.is_absolute() ? config : base / config).lexically_normal().string();
+    if (!fs::exists(node.config)) throw n.error("config", "file " + node.config + " does not exist");
+    node.args = n.get_string_list("args");
+    scenario.nodes.push_back(std::move(node));
+  }
+  if (scenario.nodes.empty()) throw root.error("nodes", "a scenario needs at least one node");
+  root.check_all_used();
+  return scenario;
+}
+
+}  // namespace teleop::launcher

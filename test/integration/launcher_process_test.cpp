@@ -1,0 +1,36 @@
+// The launcher as a real process: bad scenarios, failing nodes.
+#include <gtest/gtest.h>
+
+#include "process_helpers.h"
+
+namespace teleop::test {
+namespace {
+
+TEST(LauncherProcess, RejectsABadScenarioNamingFileAndKey) {
+  const std::string dir = make_temp_dir();
+  write_file(dir + "/s.yaml", "scenario:\n  name: x\n  duration_s: -1\nnodes: []\n");
+  const ProcessResult r = run_process({bin("teleop"), "launch", dir + "/s.yaml"}, std::chrono::seconds(20));
+  EXPECT_EQ(r.exit_status, 2) << r.output;
+  EXPECT_NE(r.output.find(dir + "/s.yaml:3: scenario.duration_s: value -1 is out of range"), std::string::npos)
+      << r.output;
+}
+
+TEST(LauncherProcess, FailsAndStopsTheOthersWhenANodeCannotStart) {
+  const std::string dir = make_temp_dir();
+  write_file(dir + "/bad.yaml", read_file(source("config/nodes/leader.yaml")) + "bogus_section: 1\n");
+  write_file(dir + "/s.yaml", "scenario:\n  name: failing\n  duration_s: 20\nnodes:\n"
+                              "  - {name: follower, executable: teleop_follower, config: " +
+                                  source("config/nodes/follower.yaml") +
+                                  "}\n"
+                                  "  - {name: leader, executable: teleop_leader, config: bad.yaml}\n");
+  const ProcessResult r = run_process({bin("teleop"), "launch", dir + "/s.yaml", "--domain",
+                                       std::to_string(unique_domain()), "--bin-dir", TELEOP_BIN_DIR},
+                                      std::chrono::seconds(60));
+  EXPECT_EQ(r.exit_status, 1) << r.output;
+  EXPECT_NE(r.output.find("bogus_section: unknown key"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("leader exited early with status 2"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("RESULT: FAILED"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace teleop::test

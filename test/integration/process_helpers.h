@@ -1,0 +1,53 @@
+#pragma once
+// Helpers for tests that run nodes as real processes.
+
+#include <chrono>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "teleop/launcher/child_process.h"
+
+namespace teleop::test {
+
+/// Path of a built executable (bin directory of this build).
+std::string bin(const std::string& name);
+/// Path inside the source tree.
+std::string source(const std::string& relative);
+
+/// A DDS domain id no other concurrently running test process uses.
+int unique_domain();
+
+/// A fresh, empty directory for this test.
+std::string make_temp_dir();
+void write_file(const std::string& path, const std::string& text);
+std::string read_file(const std::string& path);
+
+struct ProcessResult {
+  std::optional<int> exit_status;  ///< nullopt: still running at the timeout, then killed
+  std::string output;              ///< stdout and stderr
+};
+
+/// Runs a command to completion (killing it after `timeout`) and captures its output.
+ProcessResult run_process(const std::vector<std::string>& argv, std::chrono::seconds timeout);
+
+/// A started process whose output is collected while the test waits.
+class RunningProcess {
+ public:
+  explicit RunningProcess(const std::vector<std::string>& argv);
+  /// Collects output for `duration`.
+  void run_for(std::chrono::milliseconds duration);
+  /// Collects output until `text` appears (true) or `timeout` passes (false).
+  bool wait_for_output(const std::string& text, std::chrono::seconds timeout);
+  /// Sends `sig`, then waits for the exit while collecting output.
+  std::optional<int> stop(int sig, std::chrono::seconds timeout);
+  launcher::ChildProcess& process() { return process_; }
+  const std::string& output() const { return output_; }
+
+ private:
+  void collect();
+  launcher::ChildProcess process_;
+  std::string output_;
+};
+
+}  // namespace teleop::test
