@@ -11,6 +11,11 @@ NodeConfig parse_node_config(const ConfigNode& section, const std::string& defau
   if (c.status_rate_hz > c.rate_hz) throw section.error("status_rate_hz", "must not exceed rate_hz");
   c.duration_s = section.get_double("duration_s", Range{0, 1e6}, 0.0);
   c.max_catch_up_cycles = static_cast<uint64_t>(section.get_int("max_catch_up_cycles", Range{0, 100'000}, 10));
+  const std::string mode = section.get_choice("realtime", {"off", "optional", "required"}, "off");
+  c.realtime.mode = mode == "required" ? RealtimeMode::kRequired
+                    : mode == "optional" ? RealtimeMode::kOptional
+                                         : RealtimeMode::kOff;
+  c.realtime.priority = static_cast<int>(section.get_int("realtime_priority", Range{1, 99}, 80));
   return c;
 }
 

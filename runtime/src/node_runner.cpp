@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "teleop/common/clock.h"
+#include "teleop/runtime/realtime.h"
 #include "teleop/runtime/shutdown_signal.h"
 #include "teleop/runtime/status_publisher.h"
 #include "teleop/transport/participant_config.h"
@@ -92,6 +93,10 @@ int run(const CommandLine& cli, const NodeDescription& description) {
     MonotonicClock clock;
     RatePacer pacer(clock, node.period_ns(), node.max_catch_up_cycles);
 
+    if (const std::string problem = apply_realtime(node.realtime); !problem.empty()) {
+      if (node.realtime.mode == RealtimeMode::kRequired) throw std::runtime_error("real-time setup: " + problem);
+      spdlog::warn("{}: running without real-time scheduling: {}", node.name, problem);
+    }
     started_ns = monotonic_now_ns();
     run_loop(node, *logic, status, pacer);
     status.publish(msg::STATE_STOPPING, *logic, pacer.stats());

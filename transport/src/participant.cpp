@@ -7,7 +7,9 @@
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 #include <fastrtps/utils/IPLocator.h>
+#include <fastrtps/xmlparser/XMLProfileManager.h>
 
+#include <mutex>
 #include <stdexcept>
 
 #include "teleop/transport/qos.h"
@@ -80,9 +82,23 @@ dds::DomainParticipantQos participant_qos(const ParticipantConfig& config) {
   return qos;
 }
 
+// Intra-process delivery hands samples from a writer straight into same-process readers: it
+// allocates on the writer's (control) thread in Fast DDS 2.9 and bypasses the transports that
+// traffic is observed and impaired in. Nodes are separate processes, so nothing is lost.
+void disable_intraprocess_delivery() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    using eprosima::fastrtps::xmlparser::XMLProfileManager;
+    eprosima::fastrtps::LibrarySettingsAttributes settings = XMLProfileManager::library_settings();
+    settings.intraprocess_delivery = eprosima::fastrtps::INTRAPROCESS_OFF;
+    XMLProfileManager::library_settings(settings);
+  });
+}
+
 }  // namespace
 
 Participant::Participant(const ParticipantConfig& config) : config_(config) {
+  disable_intraprocess_delivery();
   auto* factory = dds::DomainParticipantFactory::get_instance();
   participant_ = factory->create_participant(static_cast<dds::DomainId_t>(config.domain_id), participant_qos(config));
   if (participant_ == nullptr) {

@@ -35,7 +35,7 @@ ParticipantConfig parse_participant_config(const ConfigNode& section, const std:
   c.domain_id = static_cast<int>(section.get_int("domain_id", Range{0, 232}));
   c.name = section.get_string("participant_name", default_name);
   c.udpv4 = section.get_bool("udpv4", true);
-  c.shm = section.get_bool("shm", true);
+  c.shm = section.get_bool("shm", false);
   if (!c.udpv4 && !c.shm) throw section.error("shm", "at least one of udpv4 and shm must be true");
   c.initial_peers = section.get_string_list("initial_peers");
   for (const auto& peer : c.initial_peers) validate_peer(section, peer);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "teleop/common/config.h"
+#include "teleop/runtime/realtime.h"
 
 namespace teleop::runtime {
 
@@ -19,6 +20,8 @@ struct NodeConfig {
   double duration_s = 0.0;
   /// Deadlines a late loop may still catch up on before it drops them (see RatePacer).
   uint64_t max_catch_up_cycles = 10;
+  /// Locked memory and SCHED_FIFO for the loop thread.
+  RealtimeConfig realtime;
 
   int64_t period_ns() const { return static_cast<int64_t>(1e9 / rate_hz); }
 };
