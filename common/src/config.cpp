@@ -64,6 +64,14 @@ ConfigNode ConfigNode::load_string(const std::string& text, const std::string& s
 
 ConfigNode::ConfigNode(std::shared_ptr<FileState> state, YAML::Node node, std::string path)
     : state_(std::move(state)), node_(node), path_(std::move(path)) {
+  // a mapping opened again (e.g. child("a") called twice) shares its record, so that a key read
+  // through either handle counts as used
+  for (const auto& mapping : state_->mappings) {
+    if (mapping->node.is(node_)) {
+      record_ = mapping;
+      return;
+    }
+  }
   record_ = std::make_shared<MappingRecord>(MappingRecord{node_, path_, {}});
   state_->mappings.push_back(record_);
 }
@@ -76,7 +84,14 @@ std::string ConfigNode::key_path(const std::string& key) const {
 
 ConfigError ConfigNode::error_at(const YAML::Node& where, const std::string& key,
                                  const std::string& problem) const {
-  const YAML::Mark mark = where.IsDefined() ? where.Mark() : node_.Mark();
+  YAML::Mark mark = where.IsDefined() ? where.Mark() : node_.Mark();
+  if (where.IsDefined() && where.IsNull()) {
+    // a key without a value: yaml-cpp marks the empty value at the next token, often a later
+    // line, so point at the key itself
+    for (const auto& entry : node_) {
+      if (entry.first.IsScalar() && entry.first.Scalar() == key) mark = entry.first.Mark();
+    }
+  }
   std::string location = state_->file;
   if (mark.line >= 0) location += ":" + std::to_string(mark.line + 1);
   return ConfigError(location + ": " + key_path(key) + ": " + problem);

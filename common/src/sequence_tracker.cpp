@@ -6,14 +6,25 @@ void SequenceTracker::on_sample(uint64_t seq, int64_t source_stamp_ns, int64_t r
   if (received_ == 0) {
     first_seq_ = last_seq_ = seq;
     first_receive_ns_ = receive_stamp_ns;
+    window_ = 1;
   } else if (seq == last_seq_) {
     ++duplicates_;
     return;
   } else if (seq < last_seq_) {
+    const uint64_t age = last_seq_ - seq;
+    if (age < kWindow) {
+      if ((window_ >> age) & 1u) {
+        ++duplicates_;
+        return;
+      }
+      window_ |= uint64_t{1} << age;
+    }
     // an older sample arrived after a newer one; it still counts as received
     ++reordered_;
     if (seq < first_seq_) first_seq_ = seq;
   } else {
+    const uint64_t advance = seq - last_seq_;
+    window_ = (advance < kWindow ? window_ << advance : 0) | 1u;
     last_seq_ = seq;
   }
   ++received_;

@@ -37,6 +37,10 @@ class SequenceTracker {
   uint64_t reordered_ = 0;
   int64_t first_receive_ns_ = 0;
   int64_t last_receive_ns_ = 0;
+  // receipt bits of the newest kWindow sequence numbers: bit i set = last_seq_ - i was received,
+  // so that a repeated older sample counts as a duplicate, not as a late arrival
+  static constexpr uint64_t kWindow = 64;
+  uint64_t window_ = 0;
   DurationHistogram latency_;
 };
 

@@ -1,0 +1,157 @@
+#include "teleop/transport/participant_config.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace teleop::transport {
+namespace {
+
+ParticipantConfig parse(const std::string& text) {
+  const ConfigNode root = ConfigNode::load_string(text, "node.yaml");
+  ParticipantConfig c = parse_participant_config(root.child("transport"), "leader");
+  root.check_all_used();
+  return c;
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    parse(text);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no ConfigError for:\n" << text;
+  return {};
+}
+
+TEST(ParseParticipantConfig, AppliesDefaultsWhenOnlyDomainGiven) {
+  const ParticipantConfig c = parse("transport:\n  domain_id: 7\n");
+  const ParticipantConfig defaults;
+  EXPECT_EQ(c.domain_id, 7);
+  EXPECT_EQ(c.name, "leader");  // the default name passed in
+  EXPECT_TRUE(c.udpv4);
+  EXPECT_FALSE(c.shm);  // opt-in: Fast DDS 2.9 allocates per sample in it
+  EXPECT_TRUE(c.initial_peers.empty());
+  EXPECT_TRUE(c.interface_whitelist.empty());
+  EXPECT_EQ(c.liveliness_lease_ns, defaults.liveliness_lease_ns);
+  EXPECT_EQ(c.participant_lease_ns, defaults.participant_lease_ns);
+  EXPECT_EQ(c.stream_deadline_ns, defaults.stream_deadline_ns);
+}
+
+TEST(ParseParticipantConfig, ReadsEveryKeyWhenAllGiven) {
+  const ParticipantConfig c = parse(
+      "transport:\n"
+      "  domain_id: 232\n"
+      "  participant_name: robot_a\n"
+      "  udpv4: true\n"
+      "  shm: false\n"
+      "  initial_peers: [192.168.1.10, \"10.0.0.2:7412\", \"127.0.0.1:0\"]\n"
+      "  interface_whitelist: [127.0.0.1]\n"
+      "  liveliness_lease_ms: 100\n"
+      "  participant_lease_ms: 2000\n"
+      "  stream_deadline_ms: 2.5\n");
+  EXPECT_EQ(c.domain_id, 232);
+  EXPECT_EQ(c.name, "robot_a");
+  EXPECT_TRUE(c.udpv4);
+  EXPECT_FALSE(c.shm);
+  EXPECT_EQ(c.initial_peers, (std::vector<std::string>{"192.168.1.10", "10.0.0.2:7412", "127.0.0.1:0"}));
+  EXPECT_EQ(c.interface_whitelist, (std::vector<std::string>{"127.0.0.1"}));
+  EXPECT_EQ(c.liveliness_lease_ns, 100'000'000);
+  EXPECT_EQ(c.participant_lease_ns, 2'000'000'000);
+  EXPECT_EQ(c.stream_deadline_ns, 2'500'000);
+}
+
+TEST(ParseParticipantConfig, AcceptsEqualLeases) {
+  const ParticipantConfig c =
+      parse("transport:\n  domain_id: 0\n  liveliness_lease_ms: 500\n  participant_lease_ms: 500\n");
+  EXPECT_EQ(c.participant_lease_ns, c.liveliness_lease_ns);
+}
+
+TEST(ParseParticipantConfig, AcceptsShmOnlyWhenUdpOff) {
+  const ParticipantConfig c = parse("transport:\n  domain_id: 0\n  udpv4: false\n  shm: true\n");
+  EXPECT_FALSE(c.udpv4);
+  EXPECT_TRUE(c.shm);
+}
+
+TEST(ParseParticipantConfig, RequiresDomainId) {
+  EXPECT_EQ(error_of("transport:\n  shm: true\n"), "node.yaml:2: transport.domain_id: missing required key");
+}
+
+TEST(ParseParticipantConfig, RejectsDomainIdOutOfRange) {
+  EXPECT_EQ(error_of("transport:\n  domain_id: 233\n"),
+            "node.yaml:2: transport.domain_id: value 233 is out of range [0, 232]");
+  EXPECT_EQ(error_of("transport:\n  domain_id: -1\n"),
+            "node.yaml:2: transport.domain_id: value -1 is out of range [0, 232]");
+}
+
+TEST(ParseParticipantConfig, RejectsBadIpv4Peer) {
+  EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  initial_peers: [192.168.1.300]\n"),
+            "node.yaml:3: transport.initial_peers: '192.168.1.300' is not an IPv4 address (optionally with :port)");
+  EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  initial_peers: [robot.local]\n"),
+            "node.yaml:3: transport.initial_peers: 'robot.local' is not an IPv4 address (optionally with :port)");
+  EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  initial_peers: [\"fe80::1\"]\n"),
+            "node.yaml:3: transport.initial_peers: 'fe80::1' is not an IPv4 address (optionally with :port)");
+  EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  initial_peers: [\":7400\"]\n"),
+            "node.yaml:3: transport.initial_peers: ':7400' is not an IPv4 address (optionally with :port)");
+}
+
+TEST(ParseParticipantConfig, RejectsBadPeerPort) {
+  for (const std::string peer : {"10.0.0.1:", "10.0.0.1:65536", "10.0.0.1:99999999999", "10.0.0.1:74a0", "10.0.0.1:-1"}) {
+    EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  initial_peers: [\"" + peer + "\"]\n"),
+              "node.yaml:3: transport.initial_peers: '" + peer + "' has an invalid port")
+        << peer;
+  }
+}
+
+TEST(ParseParticipantConfig, AcceptsHighestPeerPort) {
+  const ParticipantConfig c = parse("transport:\n  domain_id: 0\n  initial_peers: [\"10.0.0.1:65535\"]\n");
+  EXPECT_EQ(c.initial_peers.at(0), "10.0.0.1:65535");
+}
+
+TEST(ParseParticipantConfig, RejectsBadInterfaceAddress) {
+  EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  interface_whitelist: [eth0]\n"),
+            "node.yaml:3: transport.interface_whitelist: 'eth0' is not an IPv4 address");
+}
+
+TEST(ParseParticipantConfig, RejectsBothTransportsOff) {
+  EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  udpv4: false\n  shm: false\n"),
+            "node.yaml:4: transport.shm: at least one of udpv4 and shm must be true");
+  // shm is off by default, so turning UDP off alone leaves nothing
+  EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  udpv4: false\n"),
+            "node.yaml:2: transport.shm: at least one of udpv4 and shm must be true");
+}
+
+TEST(ParseParticipantConfig, RejectsParticipantLeaseShorterThanLivelinessLease) {
+  EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  liveliness_lease_ms: 1000\n  participant_lease_ms: 999\n"),
+            "node.yaml:4: transport.participant_lease_ms: must not be shorter than liveliness_lease_ms");
+  // also when the participant lease is the default (3000 ms) and only the liveliness lease is set
+  EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  liveliness_lease_ms: 5000\n"),
+            "node.yaml:2: transport.participant_lease_ms: must not be shorter than liveliness_lease_ms");
+}
+
+TEST(ParseParticipantConfig, RejectsLeasesAndDeadlineOutOfRange) {
+  EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  liveliness_lease_ms: 0\n"),
+            "node.yaml:3: transport.liveliness_lease_ms: value 0 is out of range [1, 3.6e+06]");
+  EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  participant_lease_ms: 3600001\n"),
+            "node.yaml:3: transport.participant_lease_ms: value 3600001 is out of range [1, 3.6e+06]");
+  EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  stream_deadline_ms: 0.05\n"),
+            "node.yaml:3: transport.stream_deadline_ms: value 0.05 is out of range [0.1, 60000]");
+  EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  stream_deadline_ms: .nan\n"),
+            "node.yaml:3: transport.stream_deadline_ms: value .nan is out of range [0.1, 60000]");
+}
+
+TEST(ParseParticipantConfig, RejectsWrongTypes) {
+  EXPECT_EQ(error_of("transport:\n  domain_id: zero\n"),
+            "node.yaml:2: transport.domain_id: expected an integer, got 'zero'");
+  EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  shm: yes please\n"),
+            "node.yaml:3: transport.shm: expected true or false, got 'yes please'");
+  EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  initial_peers: 10.0.0.1\n"),
+            "node.yaml:3: transport.initial_peers: expected a list of strings, got '10.0.0.1'");
+}
+
+TEST(ParseParticipantConfig, RejectsUnknownKeyInSection) {
+  EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  multicast: true\n"), "node.yaml:3: transport.multicast: unknown key");
+}
+
+}  // namespace
+}  // namespace teleop::transport
