@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "teleop/common/clock.h"
 #include "teleop/common/joint_config.h"
 #include "teleop/transport/joint_fields.h"
 
@@ -51,10 +50,10 @@ FollowerNode::FollowerNode(const FollowerConfig& config, runtime::NodeContext& c
   active_.damping.fill(config.hold_damping_nms_per_rad);
 }
 
-void FollowerNode::take_command() {
+void FollowerNode::take_command(int64_t now_ns) {
   if (command_.poll() == 0) return;
   if (validator_.validate(command_.latest(), active_) == CommandVerdict::kRejected) return;
-  last_valid_command_ns_ = monotonic_now_ns();
+  last_valid_command_ns_ = now_ns;
   have_command_ = true;
 }
 
@@ -108,7 +107,7 @@ void FollowerNode::publish_state() {
 }
 
 void FollowerNode::cycle(const CycleTick& tick) {
-  take_command();
+  take_command(tick.now_ns);
   run_watchdog(tick.now_ns);
   compute_torque();
   model_.step(tau_nm_, period_s_);

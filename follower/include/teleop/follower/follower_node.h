@@ -39,7 +39,7 @@ class FollowerNode final : public runtime::NodeLogic {
   void fill_report(runtime::NodeReport& report) const override;
 
  private:
-  void take_command();
+  void take_command(int64_t now_ns);
   void run_watchdog(int64_t now_ns);
   void compute_torque();
   void publish_state();
