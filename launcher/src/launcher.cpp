@@ -12,6 +12,7 @@
 
 #include "teleop/common/clock.h"
 #include "teleop/launcher/child_process.h"
+#include "teleop/launcher/status_monitor.h"
 #include "teleop/runtime/shutdown_signal.h"
 
 namespace teleop::launcher {
@@ -43,8 +44,8 @@ void forward_output(RunningNode& node) {
   std::fflush(stdout);
 }
 
-// waits up to 50 ms for output from any node and forwards it
-void pump_output(std::vector<RunningNode>& nodes) {
+// waits up to 50 ms for output from any node and forwards it, with the statuses on the bus
+void pump_output(std::vector<RunningNode>& nodes, StatusMonitor& monitor) {
   std::vector<pollfd> fds;
   for (auto& n : nodes) {
     if (n.process.output_fd() >= 0) fds.push_back({n.process.output_fd(), POLLIN, 0});
@@ -55,6 +56,7 @@ void pump_output(std::vector<RunningNode>& nodes) {
     poll(fds.data(), fds.size(), 50);
   }
   for (auto& n : nodes) forward_output(n);
+  monitor.poll();
 }
 
 std::vector<RunningNode> start_nodes(const Scenario& scenario, const LaunchOptions& options,
@@ -76,10 +78,10 @@ std::vector<RunningNode> start_nodes(const Scenario& scenario, const LaunchOptio
 }
 
 // runs until the duration is over, a signal arrives, or a node exits; true if a node failed
-bool supervise(std::vector<RunningNode>& nodes, double duration_s) {
+bool supervise(std::vector<RunningNode>& nodes, StatusMonitor& monitor, double duration_s) {
   const int64_t end_ns = duration_s > 0 ? monotonic_now_ns() + static_cast<int64_t>(duration_s * 1e9) : INT64_MAX;
   while (!runtime::shutdown_requested() && monotonic_now_ns() < end_ns) {
-    pump_output(nodes);
+    pump_output(nodes, monitor);
     for (auto& n : nodes) {
       if (auto status = n.process.try_wait()) {
         std::printf("[launch  ] %s exited early with status %d: stopping the others\n", n.spec->name.c_str(), *status);
@@ -91,7 +93,7 @@ bool supervise(std::vector<RunningNode>& nodes, double duration_s) {
 }
 
 // SIGTERM to all, wait for them (forwarding their last words), SIGKILL what is left
-bool stop_nodes(std::vector<RunningNode>& nodes, double stop_timeout_s) {
+bool stop_nodes(std::vector<RunningNode>& nodes, StatusMonitor& monitor, double stop_timeout_s) {
   for (auto& n : nodes) n.process.signal(SIGTERM);
   const int64_t deadline = monotonic_now_ns() + static_cast<int64_t>(stop_timeout_s * 1e9);
   auto all_exited = [&] {
@@ -99,7 +101,7 @@ bool stop_nodes(std::vector<RunningNode>& nodes, double stop_timeout_s) {
     for (auto& n : nodes) all = n.process.try_wait().has_value() && all;
     return all;
   };
-  while (!all_exited() && monotonic_now_ns() < deadline) pump_output(nodes);
+  while (!all_exited() && monotonic_now_ns() < deadline) pump_output(nodes, monitor);
   bool clean = true;
   for (auto& n : nodes) {
     if (!n.process.try_wait()) {
@@ -113,7 +115,7 @@ bool stop_nodes(std::vector<RunningNode>& nodes, double stop_timeout_s) {
     }
   }
   // drain whatever is left in the pipes
-  for (int i = 0; i < 3; ++i) pump_output(nodes);
+  for (int i = 0; i < 3; ++i) pump_output(nodes, monitor);
   return clean;
 }
 
@@ -149,11 +151,14 @@ LaunchResult launch(const Scenario& scenario, const LaunchOptions& options) {
   const double duration_s = options.duration_s.value_or(scenario.duration_s);
   runtime::install_shutdown_handlers();
 
+  StatusMonitor monitor(scenario_domain(scenario.nodes.front().config, options.domain_id), [](const std::string& line) {
+    std::printf("[status  ] %s\n", line.c_str());
+  });
   std::vector<RunningNode> nodes = start_nodes(scenario, options, result.report_dir);
   std::printf("[launch  ] %zu nodes running for %s\n", nodes.size(),
               duration_s > 0 ? (std::to_string(duration_s) + " s").c_str() : "until Ctrl-C");
-  const bool failed = supervise(nodes, duration_s);
-  const bool clean = stop_nodes(nodes, scenario.stop_timeout_s);
+  const bool failed = supervise(nodes, monitor, duration_s);
+  const bool clean = stop_nodes(nodes, monitor, scenario.stop_timeout_s);
 
   std::vector<runtime::NodeReport> reports;
   bool all_reported = true;
@@ -166,6 +171,7 @@ LaunchResult launch(const Scenario& scenario, const LaunchOptions& options) {
     }
   }
   result.summary = summarize(std::move(reports));
+  result.summary.bus_status = monitor.nodes();
   result.exit_code = (!failed && clean && all_reported) ? 0 : 1;
   return result;
 }

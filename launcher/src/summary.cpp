@@ -26,12 +26,17 @@ RunSummary summarize(std::vector<runtime::NodeReport> reports) {
 
 std::string format_summary(const RunSummary& summary, const std::string& scenario_name) {
   std::string out = fmt::format("\n== teleop run summary: {} ==\n\n", scenario_name);
-  out += fmt::format("{:<10} {:<10} {:>7} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9} {:>11}\n", "node", "state", "run_s",
-                     "cycles", "overruns", "skipped", "late_p50", "late_p99", "late_max", "shutdown_ms");
+  out += fmt::format("{:<10} {:<10} {:>7} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9} {:>11}  {}\n", "node", "state", "run_s",
+                     "cycles", "overruns", "skipped", "late_p50", "late_p99", "late_max", "shutdown_ms",
+                     "status on bus");
   for (const auto& n : summary.nodes) {
-    out += fmt::format("{:<10} {:<10} {:>7.2f} {:>8} {:>8} {:>8} {:>7.0f}us {:>7.0f}us {:>7.0f}us {:>11.1f}\n", n.name,
-                       n.final_state, n.run_time_s, n.cycles, n.overruns, n.skipped, n.lateness_p50_ns * 1e-3,
-                       n.lateness_p99_ns * 1e-3, n.lateness_max_ns * 1e-3, n.shutdown_ms);
+    std::string bus = "none received";
+    if (auto it = summary.bus_status.find(n.name); it != summary.bus_status.end()) {
+      bus = fmt::format("{} ({} reports)", it->second.state, it->second.reports);
+    }
+    out += fmt::format("{:<10} {:<10} {:>7.2f} {:>8} {:>8} {:>8} {:>7.0f}us {:>7.0f}us {:>7.0f}us {:>11.1f}  {}\n",
+                       n.name, n.final_state, n.run_time_s, n.cycles, n.overruns, n.skipped, n.lateness_p50_ns * 1e-3,
+                       n.lateness_p99_ns * 1e-3, n.lateness_max_ns * 1e-3, n.shutdown_ms, bus);
   }
   out += fmt::format("\n{:<30} {:<20} {:>7} {:>7} {:>6} {:>6} {:>8} {:>8} {:>8} {:>8} {:>8}\n", "topic",
                      "direction", "sent", "recv", "lost", "loss%", "rate_Hz", "lat_p50", "lat_p99", "lat_max",

@@ -11,6 +11,7 @@
 #include "teleop/common/clock.h"
 #include "teleop/runtime/realtime.h"
 #include "teleop/runtime/shutdown_signal.h"
+#include "teleop/runtime/status_names.h"
 #include "teleop/runtime/status_publisher.h"
 #include "teleop/transport/participant_config.h"
 
@@ -24,17 +25,6 @@ struct CommandLine {
   std::string report_path;
   std::string log_level = "info";
 };
-
-const char* state_name(msg::NodeState state) {
-  switch (state) {
-    case msg::STATE_STARTING: return "starting";
-    case msg::STATE_RUNNING: return "running";
-    case msg::STATE_SAFE_HOLD: return "safe_hold";
-    case msg::STATE_FAULT: return "fault";
-    case msg::STATE_STOPPING: return "stopping";
-  }
-  return "unknown";
-}
 
 // everything parsed and validated before anything touches the network
 struct Setup {
@@ -99,7 +89,8 @@ int run(const CommandLine& cli, const NodeDescription& description) {
     }
     started_ns = monotonic_now_ns();
     run_loop(node, *logic, status, pacer);
-    status.publish(msg::STATE_STOPPING, *logic, pacer.stats());
+    // bounded, so that shutdown stays well inside 100 ms even with a dead status reader
+    status.publish_stopping(*logic, pacer.stats(), 50 * kNsPerMs);
 
     report.name = node.name;
     report.role = description.role_name;

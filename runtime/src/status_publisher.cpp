@@ -36,4 +36,9 @@ void StatusPublisher::publish(msg::NodeState state, const NodeLogic& logic, cons
   publication_.publish();
 }
 
+void StatusPublisher::publish_stopping(const NodeLogic& logic, const PacerStats& loop, int64_t timeout_ns) {
+  publish(msg::STATE_STOPPING, logic, loop);
+  publication_.wait_for_acknowledgments(timeout_ns);
+}
+
 }  // namespace teleop::runtime

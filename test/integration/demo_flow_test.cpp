@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <regex>
 
 #include "process_helpers.h"
 #include "teleop/runtime/node_report.h"
@@ -12,13 +13,14 @@ namespace {
 constexpr double kRateHz = 1000.0;
 constexpr double kRunS = 4.0;
 
-std::map<std::string, runtime::NodeReport> run_demo(const std::string& dir) {
+std::map<std::string, runtime::NodeReport> run_demo(const std::string& dir, std::string* output = nullptr) {
   const ProcessResult r = run_process({bin("teleop"), "launch", source("config/scenarios/demo.yaml"), "--duration",
                                        std::to_string(kRunS), "--domain", std::to_string(unique_domain()),
                                        "--report-dir", dir},
                                       std::chrono::seconds(60));
   EXPECT_EQ(r.exit_status, 0) << r.output;
   EXPECT_NE(r.output.find("teleop run summary: demo"), std::string::npos) << r.output;
+  if (output != nullptr) *output = r.output;
   std::map<std::string, runtime::NodeReport> reports;
   for (const char* node : {"leader", "follower", "twin"}) reports[node] = runtime::read_report(dir + "/" + node + ".yaml");
   return reports;
@@ -56,6 +58,19 @@ TEST(DemoFlow, SamplesFlowBothWaysAtTheConfiguredRate) {
     EXPECT_NEAR(report.rate_hz, kRateHz, 1e-9);
     EXPECT_GT(report.cycles, static_cast<uint64_t>(0.9 * kRunS * kRateHz));
     EXPECT_GE(report.shutdown_ms, 0.0) << "the launcher stops nodes with SIGTERM, which they must report";
+  }
+}
+
+TEST(DemoFlow, EveryNodeReportsItsStateOnTheBus) {
+  std::string output;
+  run_demo(make_temp_dir(), &output);
+  for (const std::string node : {"leader", "follower", "twin"}) {
+    SCOPED_TRACE(node);
+    // the launcher logs each state change it sees in NodeStatus, and the last one in the summary
+    EXPECT_NE(output.find("[status  ] " + node + ": "), std::string::npos) << output;
+    EXPECT_NE(output.find("-> running"), std::string::npos) << output;
+    const std::regex summary_line(node + " +running .* stopping \\([0-9]+ reports\\)");
+    EXPECT_TRUE(std::regex_search(output, summary_line)) << output;
   }
 }
 

@@ -45,7 +45,9 @@ class ScriptedLeaderTest : public ::testing::Test {
   }
 
   void step(bool follower_alive) {
-    if (follower_alive) ASSERT_TRUE(follower.state.publish());
+    if (follower_alive) {
+      ASSERT_TRUE(follower.state.publish());
+    }
     std::this_thread::sleep_for(std::chrono::microseconds(500));
     node.cycle(harness.tick());
   }

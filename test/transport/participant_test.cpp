@@ -190,7 +190,7 @@ TEST(Participant, KeepsNewestSampleAsLatestWhenSeveralArriveBetweenPolls) {
   ASSERT_TRUE(wait_for([&] { return pub.matched() == 1 && sub.reader().matched() == 1; }));
 
   // fewer than the stream reader's history depth, so all of them are kept until the poll
-  constexpr int kBurst = kStreamReaderDepth / 2;
+  constexpr int kBurst = kReaderDepth / 2;
   for (int i = 1; i <= kBurst; ++i) {
     fill(pub.sample(), i);
     ASSERT_TRUE(pub.publish());

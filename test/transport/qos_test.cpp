@@ -48,12 +48,12 @@ TEST(Qos, StreamReaderKeepsStreamDepthAndPreallocatesExactlyIt) {
   EXPECT_EQ(q.reliability().kind, dds::BEST_EFFORT_RELIABILITY_QOS);
   EXPECT_EQ(q.durability().kind, dds::VOLATILE_DURABILITY_QOS);
   EXPECT_EQ(q.history().kind, dds::KEEP_LAST_HISTORY_QOS);
-  EXPECT_EQ(q.history().depth, kStreamReaderDepth);
+  EXPECT_EQ(q.history().depth, kReaderDepth);
   EXPECT_EQ(ns_of(q.deadline().period), 3'500'000);
   EXPECT_EQ(q.resource_limits().max_instances, 1);
-  EXPECT_EQ(q.resource_limits().max_samples_per_instance, kStreamReaderDepth);
-  EXPECT_EQ(q.resource_limits().max_samples, kStreamReaderDepth);
-  EXPECT_EQ(q.resource_limits().allocated_samples, kStreamReaderDepth);
+  EXPECT_EQ(q.resource_limits().max_samples_per_instance, kReaderDepth);
+  EXPECT_EQ(q.resource_limits().max_samples, kReaderDepth);
+  EXPECT_EQ(q.resource_limits().allocated_samples, kReaderDepth);
 }
 
 TEST(Qos, StateWriterIsReliableTransientLocalKeepLastOne) {
@@ -69,15 +69,15 @@ TEST(Qos, StateWriterIsReliableTransientLocalKeepLastOne) {
   EXPECT_LE(ns_of(q.reliability().max_blocking_time), 1'000'000);
 }
 
-TEST(Qos, StateReaderIsReliableTransientLocalKeepLastOne) {
+TEST(Qos, StateReaderIsReliableTransientLocalAndKeepsWhatArrivesBetweenPolls) {
   const dds::DataReaderQos q = reader_qos(QosPreset::kState, config());
   EXPECT_EQ(q.reliability().kind, dds::RELIABLE_RELIABILITY_QOS);
   EXPECT_EQ(q.durability().kind, dds::TRANSIENT_LOCAL_DURABILITY_QOS);
   EXPECT_EQ(q.history().kind, dds::KEEP_LAST_HISTORY_QOS);
-  EXPECT_EQ(q.history().depth, 1);
+  EXPECT_EQ(q.history().depth, kReaderDepth);
   EXPECT_EQ(q.deadline().period, eprosima::fastrtps::c_TimeInfinite);
-  EXPECT_EQ(q.resource_limits().max_samples, 1);
-  EXPECT_EQ(q.resource_limits().max_samples_per_instance, 1);
+  EXPECT_EQ(q.resource_limits().max_samples, kReaderDepth);
+  EXPECT_EQ(q.resource_limits().max_samples_per_instance, kReaderDepth);
 }
 
 TEST(Qos, EveryPresetCarriesAutomaticLivelinessWithConfiguredLease) {

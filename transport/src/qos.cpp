@@ -62,11 +62,10 @@ dds::DataWriterQos writer_qos(QosPreset preset, const ParticipantConfig& config)
 dds::DataReaderQos reader_qos(QosPreset preset, const ParticipantConfig& config) {
   dds::DataReaderQos qos = dds::DATAREADER_QOS_DEFAULT;
   apply_common(qos, preset, config);
-  if (preset == QosPreset::kStream) {
-    // the loop drains the reader every cycle; with unsynchronised loops two samples can arrive
-    // between two polls, and a depth of 1 would silently overwrite (and hide) one of them
-    qos.history().depth = kStreamReaderDepth;
-  }
+  // readers are drained periodically: with unsynchronised loops two stream samples can arrive
+  // between two polls, and several nodes write the one (unkeyed) status topic; a depth of 1
+  // would silently overwrite (and hide) samples. Writers keep 1: late joiners get the last.
+  qos.history().depth = kReaderDepth;
   // preallocate exactly the history, nothing grows at run time
   qos.resource_limits().max_instances = 1;
   qos.resource_limits().max_samples_per_instance = qos.history().depth;

@@ -5,6 +5,9 @@
 #include <string>
 #include <vector>
 
+#include <map>
+
+#include "teleop/launcher/status_monitor.h"
 #include "teleop/runtime/node_report.h"
 
 namespace teleop::launcher {
@@ -21,6 +24,8 @@ struct TopicFlow {
 struct RunSummary {
   std::vector<runtime::NodeReport> nodes;
   std::vector<TopicFlow> flows;
+  /// The last NodeStatus each node published on the bus, by node name.
+  std::map<std::string, BusStatus> bus_status;
 };
 
 RunSummary summarize(std::vector<runtime::NodeReport> reports);

@@ -18,8 +18,11 @@ class StatusPublisher {
 
   /// Publishes when a status period has passed since the last one. Real-time safe.
   void maybe_publish(const CycleTick& tick, const NodeLogic& logic, const PacerStats& loop);
-  /// Publishes now with the given state (e.g. STATE_STOPPING at shutdown).
+  /// Publishes now with the given state.
   void publish(msg::NodeState state, const NodeLogic& logic, const PacerStats& loop);
+  /// Publishes STATE_STOPPING and waits (at most `timeout_ns`) until the status readers have it,
+  /// so that the bus learns the node stopped rather than seeing it vanish. Shutdown only.
+  void publish_stopping(const NodeLogic& logic, const PacerStats& loop, int64_t timeout_ns);
 
  private:
   transport::Publication<msg::NodeStatus> publication_;

@@ -34,6 +34,9 @@ class Publication {
     return false;
   }
 
+  /// Waits up to `timeout_ns` for reliable readers to acknowledge what was published (shutdown).
+  bool wait_for_acknowledgments(int64_t timeout_ns) { return writer_.wait_for_acknowledgments(timeout_ns); }
+
   const std::string& topic_name() const { return topic_name_; }
   uint64_t sent() const { return sent_; }
   uint64_t failed() const { return failed_; }

@@ -13,13 +13,13 @@ enum class QosPreset {
   /// sample is superseded by the next one one period later; retransmitting it would only add
   /// latency.
   kStream,
-  /// Low-rate state that late joiners need (node status, configuration): reliable, keep-last 1,
-  /// transient-local, so a reader that starts late still gets the last value.
+  /// Low-rate state that late joiners need (node status, configuration): reliable, writer
+  /// keep-last 1, transient-local, so a reader that starts late still gets the last value.
   kState,
 };
 
-/// Samples a stream reader keeps between two polls of its loop.
-constexpr int32_t kStreamReaderDepth = 16;
+/// Samples a reader keeps between two polls of its loop (every preset).
+constexpr int32_t kReaderDepth = 16;
 
 const char* to_string(QosPreset preset);
 

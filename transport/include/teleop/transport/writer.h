@@ -20,6 +20,14 @@ class Writer {
     return writer_->write(const_cast<T*>(&sample));
   }
 
+  /// Blocks up to `timeout_ns` until reliable readers acknowledged everything written.
+  /// Not for the loop: for a last sample before shutdown. Returns false on timeout.
+  bool wait_for_acknowledgments(int64_t timeout_ns) {
+    const eprosima::fastrtps::Duration_t timeout(static_cast<int32_t>(timeout_ns / 1'000'000'000),
+                                                 static_cast<uint32_t>(timeout_ns % 1'000'000'000));
+    return writer_->wait_for_acknowledgments(timeout) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK;
+  }
+
   /// Readers currently matched.
   int32_t matched() const { return status_->matched.load(std::memory_order_relaxed); }
   uint64_t deadline_missed() const { return status_->deadline_missed.load(std::memory_order_relaxed); }

@@ -1,0 +1,38 @@
+#include "teleop/runtime/status_names.h"
+
+namespace teleop::runtime {
+
+const char* state_name(msg::NodeState state) {
+  switch (state) {
+    case msg::STATE_STARTING: return "starting";
+    case msg::STATE_RUNNING: return "running";
+    case msg::STATE_SAFE_HOLD: return "safe_hold";
+    case msg::STATE_FAULT: return "fault";
+    case msg::STATE_STOPPING: return "stopping";
+  }
+  return "unknown";
+}
+
+const char* fault_name(uint32_t fault_code) {
+  switch (fault_code) {
+    case msg::FAULT_NONE: return "none";
+    case msg::FAULT_PEER_LOST: return "peer_lost";
+    case msg::FAULT_STALE_INPUT: return "stale_input";
+    case msg::FAULT_COMMAND_REJECTED: return "command_rejected";
+    case msg::FAULT_LOOP_OVERRUN: return "loop_overrun";
+    case msg::FAULT_HARDWARE: return "hardware";
+  }
+  return "unknown_fault";
+}
+
+const char* role_name(msg::NodeRole role) {
+  switch (role) {
+    case msg::ROLE_LEADER: return "leader";
+    case msg::ROLE_FOLLOWER: return "follower";
+    case msg::ROLE_TWIN: return "twin";
+    case msg::ROLE_TOOL: return "tool";
+  }
+  return "unknown";
+}
+
+}  // namespace teleop::runtime
