@@ -70,6 +70,14 @@ std::vector<RunningNode> start_nodes(const Scenario& scenario, const LaunchOptio
       argv.push_back("--domain");
       argv.push_back(std::to_string(*options.domain_id));
     }
+    if (!options.network.empty()) {
+      argv.push_back("--impair");
+      argv.push_back("*=" + options.network);
+    }
+    if (options.seed) {
+      argv.push_back("--seed");
+      argv.push_back(std::to_string(*options.seed));
+    }
     argv.insert(argv.end(), spec.args.begin(), spec.args.end());
     std::printf("[launch  ] starting %s: %s --config %s\n", spec.name.c_str(), argv[0].c_str(), spec.config.c_str());
     nodes.push_back({&spec, ChildProcess::spawn(argv), report});

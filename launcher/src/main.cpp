@@ -18,6 +18,9 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   launch_cmd->add_option("--domain", options.domain_id, "DDS domain id for every node (overrides their configs)")
       ->check(CLI::Range(0, 232));
+  launch_cmd->add_option("--network", options.network,
+                          "network profile (name in config/network or a file) impairing every link, both directions");
+  launch_cmd->add_option("--seed", options.seed, "seed of the impairment decisions (printed, so a run can be repeated)");
   launch_cmd->add_option("--report-dir", options.report_dir, "directory for the nodes' reports (default: a new one in /tmp)");
   launch_cmd->add_option("--bin-dir", options.bin_dir, "directory of the node executables (default: next to teleop)");
   try {

@@ -24,7 +24,25 @@ struct CommandLine {
   std::optional<int> domain_id;
   std::string report_path;
   std::string log_level = "info";
+  std::vector<std::string> impair;
+  std::optional<uint64_t> seed;
 };
+
+// "--impair PEER=PROFILE": impair the link to PEER ("*": every peer) with PROFILE
+void apply_impair_overrides(const CommandLine& cli, transport::ParticipantConfig& transport) {
+  for (const std::string& spec : cli.impair) {
+    const auto eq = spec.find('=');
+    if (eq == std::string::npos || eq == 0) throw ConfigError("--impair " + spec + ": expected PEER=PROFILE");
+    const std::string peer = spec.substr(0, eq);
+    const std::string profile = spec.substr(eq + 1);
+    const std::string path = transport::impairment::resolve_profile_path(profile, cli.config_path);
+    if (path.empty()) throw ConfigError("--impair " + spec + ": no profile file '" + profile + "'");
+    auto& links = transport.impairment.links;
+    std::erase_if(links, [&](const auto& l) { return l.to == peer; });
+    links.push_back({peer, transport::impairment::load_link_profile(path)});
+  }
+  if (cli.seed) transport.impairment.seed = *cli.seed;
+}
 
 // everything parsed and validated before anything touches the network
 struct Setup {
@@ -41,6 +59,7 @@ Setup load_setup(const CommandLine& cli, const NodeDescription& description) {
   root.check_all_used();
   if (cli.duration_s) setup.node.duration_s = *cli.duration_s;
   if (cli.domain_id) setup.transport.domain_id = *cli.domain_id;
+  apply_impair_overrides(cli, setup.transport);
   return setup;
 }
 
@@ -119,6 +138,10 @@ int run_node(int argc, char** argv, const NodeDescription& description) {
       ->check(CLI::NonNegativeNumber);
   app.add_option("--domain", cli.domain_id, "DDS domain id (overrides transport.domain_id)")->check(CLI::Range(0, 232));
   app.add_option("-r,--report", cli.report_path, "write the run's statistics as YAML to this file at exit");
+  app.add_option("--impair", cli.impair,
+                 "impair the outgoing link to PEER (a node name, or * for all) with PROFILE (a file or a name "
+                 "in config/network), e.g. --impair follower=wan-35ms; repeatable");
+  app.add_option("--seed", cli.seed, "seed of the impairment decisions (default: transport.impairment.seed)");
   app.add_option("--log-level", cli.log_level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
   try {

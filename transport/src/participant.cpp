@@ -1,6 +1,7 @@
 #include "teleop/transport/participant.h"
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
 #include <fastdds/dds/publisher/DataWriterListener.hpp>
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
@@ -12,6 +13,9 @@
 #include <mutex>
 #include <stdexcept>
 
+#include <spdlog/spdlog.h>
+
+#include "teleop/transport/impairment/impairing_transport.h"
 #include "teleop/transport/qos.h"
 
 namespace teleop::transport {
@@ -50,6 +54,24 @@ struct Participant::ReaderListener : dds::DataReaderListener {
   }
 };
 
+// tells the impairment where each peer listens, so a destination maps to its link
+struct Participant::DiscoveryListener : dds::DomainParticipantListener {
+  std::shared_ptr<impairment::ImpairmentEngine> engine;
+  void on_participant_discovery(dds::DomainParticipant*, eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override {
+    using Status = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo;
+    const std::string name = info.info.m_participantName.to_string();
+    if (info.status == Status::REMOVED_PARTICIPANT || info.status == Status::DROPPED_PARTICIPANT) {
+      engine->peers().remove(name);
+      return;
+    }
+    std::vector<Locator_t> locators;
+    for (const auto& l : info.info.default_locators.unicast) locators.push_back(l);
+    for (const auto& l : info.info.default_locators.multicast) locators.push_back(l);
+    for (const auto& l : info.info.metatraffic_locators.unicast) locators.push_back(l);
+    engine->peers().add(name, locators);
+  }
+};
+
 namespace {
 
 Locator_t peer_locator(const std::string& peer) {
@@ -61,17 +83,23 @@ Locator_t peer_locator(const std::string& peer) {
   return loc;
 }
 
-dds::DomainParticipantQos participant_qos(const ParticipantConfig& config) {
+dds::DomainParticipantQos participant_qos(const ParticipantConfig& config,
+                                          const std::shared_ptr<impairment::ImpairmentEngine>& engine) {
   dds::DomainParticipantQos qos = dds::PARTICIPANT_QOS_DEFAULT;
   qos.name(config.name);
   qos.transport().use_builtin_transports = false;
-  if (config.shm) {
+  // impaired traffic must all go through the chaining transport: shared memory would bypass it
+  if (config.shm && !engine) {
     qos.transport().user_transports.push_back(std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
   }
   if (config.udpv4) {
     auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
     for (const auto& itf : config.interface_whitelist) udp->interfaceWhiteList.push_back(itf);
-    qos.transport().user_transports.push_back(udp);
+    if (engine) {
+      qos.transport().user_transports.push_back(std::make_shared<impairment::ImpairingTransportDescriptor>(udp, engine));
+    } else {
+      qos.transport().user_transports.push_back(udp);
+    }
   }
   for (const auto& peer : config.initial_peers) {
     qos.wire_protocol().builtin.initialPeersList.push_back(peer_locator(peer));
@@ -99,8 +127,19 @@ void disable_intraprocess_delivery() {
 
 Participant::Participant(const ParticipantConfig& config) : config_(config) {
   disable_intraprocess_delivery();
+  dds::StatusMask mask = dds::StatusMask::none();
+  if (config.impairment.enabled()) {
+    if (!config.udpv4) throw std::runtime_error("network impairment needs the udpv4 transport");
+    impairment_ = std::make_shared<impairment::ImpairmentEngine>(config.impairment, config.name);
+    discovery_listener_ = std::make_unique<DiscoveryListener>();
+    discovery_listener_->engine = impairment_;
+    spdlog::info("{}: impairing outgoing traffic (seed {}{}), shared memory off so nothing bypasses it", config.name,
+                 config.impairment.seed, config.impairment.exclude_discovery ? ", discovery unimpaired" : "");
+    for (const auto& l : config.impairment.links) spdlog::info("{}: link to {}: profile {}", config.name, l.to, l.profile.name);
+  }
   auto* factory = dds::DomainParticipantFactory::get_instance();
-  participant_ = factory->create_participant(static_cast<dds::DomainId_t>(config.domain_id), participant_qos(config));
+  participant_ = factory->create_participant(static_cast<dds::DomainId_t>(config.domain_id),
+                                             participant_qos(config, impairment_), discovery_listener_.get(), mask);
   if (participant_ == nullptr) {
     throw std::runtime_error("DDS refused to create participant '" + config.name + "' in domain " +
                              std::to_string(config.domain_id));
@@ -113,6 +152,8 @@ Participant::Participant(const ParticipantConfig& config) : config_(config) {
 }
 
 Participant::~Participant() {
+  // the delay line sends through resources the participant owns: stop it first
+  if (impairment_) impairment_->shutdown();
   if (participant_ == nullptr) return;
   // entities go before their listeners, the participant last
   participant_->delete_contained_entities();

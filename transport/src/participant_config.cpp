@@ -50,6 +50,7 @@ ParticipantConfig parse_participant_config(const ConfigNode& section, const std:
   }
   c.stream_deadline_ns =
       static_cast<int64_t>(section.get_double("stream_deadline_ms", Range{0.1, 60'000}, 5.0) * 1e6);
+  if (auto imp = section.optional_child("impairment")) c.impairment = impairment::parse_impairment_config(*imp);
   return c;
 }
 

@@ -15,6 +15,11 @@ struct LaunchOptions {
   std::optional<double> duration_s;
   /// Overrides every node's DDS domain id (runs side by side without cross-talk).
   std::optional<int> domain_id;
+  /// Impairs every node's outgoing traffic with this profile (name or file): both directions of
+  /// every link. Empty: the node configs decide.
+  std::string network;
+  /// Seed of the impairment decisions, passed to every node.
+  std::optional<uint64_t> seed;
   /// Where the nodes write their reports; a fresh temporary directory when empty.
   std::string report_dir;
   /// Directory holding the node executables; empty: next to this program, then PATH.

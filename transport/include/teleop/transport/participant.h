@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "teleop/transport/impairment/impairment_engine.h"
 #include "teleop/transport/participant_config.h"
 #include "teleop/transport/reader.h"
 #include "teleop/transport/topics.h"
@@ -63,11 +64,14 @@ class Participant {
   }
 
   const ParticipantConfig& config() const { return config_; }
+  /// The impairment of outgoing traffic; null when none is configured.
+  const impairment::ImpairmentEngine* impairment() const { return impairment_.get(); }
   eprosima::fastdds::dds::DomainParticipant* dds() { return participant_; }
 
  private:
   struct WriterListener;
   struct ReaderListener;
+  struct DiscoveryListener;
   using TakeFunction = std::function<void(eprosima::fastdds::dds::DataReader*)>;
 
   template <typename T>
@@ -85,6 +89,8 @@ class Participant {
       std::shared_ptr<void> keep_alive);
 
   ParticipantConfig config_;
+  std::shared_ptr<impairment::ImpairmentEngine> impairment_;
+  std::unique_ptr<DiscoveryListener> discovery_listener_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "teleop/common/config.h"
+#include "teleop/transport/impairment/impairment_config.h"
 
 namespace teleop::transport {
 
@@ -29,6 +30,8 @@ struct ParticipantConfig {
   int64_t participant_lease_ns = 3'000'000'000;
   /// Deadline of the 1 kHz streams: a reader notices when no sample came within it.
   int64_t stream_deadline_ns = 5'000'000;
+  /// Network impairment of this participant's outgoing traffic (off when no links).
+  impairment::ImpairmentConfig impairment;
 };
 
 /// Reads the `transport:` section. Throws ConfigError naming file and key.
