@@ -2,10 +2,11 @@
 # Installs the Debian 12 packages teleop needs. Idempotent: does nothing when all are present.
 set -euo pipefail
 
+# libqhull-dev: Debian's mujoco CMake config names its include folder without depending on it
 packages=(
   build-essential cmake ninja-build ccache pkg-config
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools default-jre-headless
-  libmujoco-dev libeigen3-dev libyaml-cpp-dev libspdlog-dev libcli11-dev
+  libmujoco-dev libqhull-dev libeigen3-dev libyaml-cpp-dev libspdlog-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   can-utils iproute2
 )
