@@ -24,6 +24,7 @@ void SequenceTracker::on_sample(uint64_t seq, int64_t source_stamp_ns, int64_t r
     if (seq < first_seq_) first_seq_ = seq;
   } else {
     const uint64_t advance = seq - last_seq_;
+    if (advance > 1) gaps_.record(static_cast<int64_t>(advance - 1));
     window_ = (advance < kWindow ? window_ << advance : 0) | 1u;
     last_seq_ = seq;
   }

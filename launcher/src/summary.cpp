@@ -24,6 +24,43 @@ RunSummary summarize(std::vector<runtime::NodeReport> reports) {
   return summary;
 }
 
+namespace {
+
+// the impaired links as configured and as they behaved, and what the receivers' loops saw
+std::string format_network(const RunSummary& summary) {
+  std::string out;
+  for (const auto& n : summary.nodes) {
+    for (const auto& l : n.links) {
+      if (out.empty()) {
+        out += fmt::format("\nnetwork impairment (seed {}; per link, as decided by the sender):\n", n.impairment_seed);
+        out += fmt::format("{:<20} {:<16} {:>8} {:>8} {:>8} {:>7} {:>7} {:>8} {:>8} {:>6} {:>6} {:>5} {:>5}\n", "link",
+                           "profile", "delay", "dly_p50", "dly_p99", "loss", "loss_m", "outage", "burst", "b_max",
+                           "dup", "reord", "queue");
+      }
+      const double measured = l.messages ? static_cast<double>(l.lost) / static_cast<double>(l.messages) : 0.0;
+      out += fmt::format("{:<20} {:<16} {:>6.2f}ms {:>6.2f}ms {:>6.2f}ms {:>6.2f}% {:>6.2f}% {:>8} {:>8.2f} {:>6} {:>6} {:>5} {:>5}\n",
+                         n.name + " -> " + l.to, l.profile, l.configured_delay_ns * 1e-6, l.delay_p50_ns * 1e-6,
+                         l.delay_p99_ns * 1e-6, 100.0 * l.configured_loss, 100.0 * measured, l.outage,
+                         l.loss_burst_mean, l.loss_burst_max, l.duplicated, l.reordered, l.queue);
+    }
+  }
+  if (out.empty()) return out;
+  out += "delay: configured base delay; dly_p50/p99: delay added (incl. jitter and order keeping); loss: configured "
+         "rate, loss_m: measured; burst: mean/max messages lost in a row.\n";
+  out += fmt::format("\n{:<30} {:<20} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "application effect", "direction", "age_p50",
+                     "age_p99", "age_max", "miss_run", "miss_max");
+  for (const auto& f : summary.flows) {
+    const auto& r = f.received;
+    out += fmt::format("{:<30} {:<20} {:>7.2f}ms {:>7.2f}ms {:>7.2f}ms {:>9.2f} {:>9}\n", f.topic, f.from + " -> " + f.to,
+                       r.age_p50_ns * 1e-6, r.age_p99_ns * 1e-6, r.age_max_ns * 1e-6, r.gap_mean, r.gap_max);
+  }
+  out += "age: how old the newest sample was each time the receiving loop looked; miss_run/miss_max: mean/max "
+         "samples missed in a row at the receiver.\n";
+  return out;
+}
+
+}  // namespace
+
 std::string format_summary(const RunSummary& summary, const std::string& scenario_name) {
   std::string out = fmt::format("\n== teleop run summary: {} ==\n\n", scenario_name);
   out += fmt::format("{:<10} {:<10} {:>7} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9} {:>11}  {}\n", "node", "state", "run_s",
@@ -51,6 +88,7 @@ std::string format_summary(const RunSummary& summary, const std::string& scenari
   out += "\nlost: sequence gaps between the first and last sample received (discovery time excluded).\n"
          "lat: source stamp to DDS reception (CLOCK_REALTIME), one way. ddl_miss: reader deadline periods "
          "without a sample.\n";
+  out += format_network(summary);
   bool any_counter = false;
   for (const auto& n : summary.nodes) {
     for (const auto& [name, value] : n.counters) {

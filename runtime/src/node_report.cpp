@@ -18,8 +18,35 @@ void NodeReport::add_loop(const PacerStats& stats) {
   lateness_max_ns = stats.lateness.max_ns();
 }
 
+void NodeReport::add_links(const transport::Participant& participant) {
+  const auto* engine = participant.impairment();
+  if (engine == nullptr) return;
+  impairment_seed = engine->seed();
+  for (const auto& l : engine->reports()) {
+    ImpairedLink link;
+    link.to = l.to;
+    link.profile = l.profile;
+    link.messages = l.stats.messages;
+    link.delivered = l.stats.delivered;
+    link.lost = l.stats.lost;
+    link.outage = l.stats.outage;
+    link.queue = l.stats.queue;
+    link.duplicated = l.stats.duplicated;
+    link.reordered = l.stats.reordered;
+    link.loss_burst_mean = l.stats.loss_runs.mean_ns();
+    link.loss_burst_max = static_cast<uint64_t>(l.stats.loss_runs.max_ns());
+    link.delay_p50_ns = l.stats.delay.percentile_ns(0.5);
+    link.delay_p99_ns = l.stats.delay.percentile_ns(0.99);
+    link.delay_max_ns = l.stats.delay.max_ns();
+    link.configured_loss = l.configured_loss;
+    link.configured_delay_ns = l.configured_delay_ns;
+    links.push_back(link);
+  }
+}
+
 ReceivedTopic NodeReport::received_from(const std::string& topic, const SequenceTracker& stats,
-                                        uint64_t deadline_missed, uint64_t liveliness_lost) {
+                                        const DurationHistogram& age, uint64_t deadline_missed,
+                                        uint64_t liveliness_lost) {
   ReceivedTopic r;
   r.topic = topic;
   r.received = stats.received();
@@ -35,6 +62,11 @@ ReceivedTopic NodeReport::received_from(const std::string& topic, const Sequence
   r.latency_max_ns = stats.latency().max_ns();
   r.deadline_missed = deadline_missed;
   r.liveliness_lost = liveliness_lost;
+  r.gap_max = static_cast<uint64_t>(stats.gaps().max_ns());
+  r.gap_mean = stats.gaps().mean_ns();
+  r.age_p50_ns = age.percentile_ns(0.50);
+  r.age_p99_ns = age.percentile_ns(0.99);
+  r.age_max_ns = age.max_ns();
   return r;
 }
 
@@ -76,6 +108,34 @@ void write_report(const NodeReport& report, const std::string& path) {
     out << YAML::Key << "latency_max_ns" << YAML::Value << r.latency_max_ns;
     out << YAML::Key << "deadline_missed" << YAML::Value << r.deadline_missed;
     out << YAML::Key << "liveliness_lost" << YAML::Value << r.liveliness_lost;
+    out << YAML::Key << "gap_max" << YAML::Value << r.gap_max;
+    out << YAML::Key << "gap_mean" << YAML::Value << r.gap_mean;
+    out << YAML::Key << "age_p50_ns" << YAML::Value << r.age_p50_ns;
+    out << YAML::Key << "age_p99_ns" << YAML::Value << r.age_p99_ns;
+    out << YAML::Key << "age_max_ns" << YAML::Value << r.age_max_ns;
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+  out << YAML::Key << "impairment_seed" << YAML::Value << report.impairment_seed;
+  out << YAML::Key << "links" << YAML::Value << YAML::BeginSeq;
+  for (const auto& l : report.links) {
+    out << YAML::BeginMap;
+    out << YAML::Key << "to" << YAML::Value << l.to;
+    out << YAML::Key << "profile" << YAML::Value << l.profile;
+    out << YAML::Key << "messages" << YAML::Value << l.messages;
+    out << YAML::Key << "delivered" << YAML::Value << l.delivered;
+    out << YAML::Key << "lost" << YAML::Value << l.lost;
+    out << YAML::Key << "outage" << YAML::Value << l.outage;
+    out << YAML::Key << "queue" << YAML::Value << l.queue;
+    out << YAML::Key << "duplicated" << YAML::Value << l.duplicated;
+    out << YAML::Key << "reordered" << YAML::Value << l.reordered;
+    out << YAML::Key << "loss_burst_mean" << YAML::Value << l.loss_burst_mean;
+    out << YAML::Key << "loss_burst_max" << YAML::Value << l.loss_burst_max;
+    out << YAML::Key << "delay_p50_ns" << YAML::Value << l.delay_p50_ns;
+    out << YAML::Key << "delay_p99_ns" << YAML::Value << l.delay_p99_ns;
+    out << YAML::Key << "delay_max_ns" << YAML::Value << l.delay_max_ns;
+    out << YAML::Key << "configured_loss" << YAML::Value << l.configured_loss;
+    out << YAML::Key << "configured_delay_ns" << YAML::Value << l.configured_delay_ns;
     out << YAML::EndMap;
   }
   out << YAML::EndSeq;
@@ -126,7 +186,33 @@ NodeReport read_report(const std::string& path) {
     t.latency_max_ns = n.get_int("latency_max_ns", kAny);
     t.deadline_missed = static_cast<uint64_t>(n.get_double("deadline_missed", kCount));
     t.liveliness_lost = static_cast<uint64_t>(n.get_double("liveliness_lost", kCount));
+    t.gap_max = static_cast<uint64_t>(n.get_double("gap_max", kCount, 0));
+    t.gap_mean = n.get_double("gap_mean", kAny, 0);
+    t.age_p50_ns = n.get_int("age_p50_ns", kAny, 0);
+    t.age_p99_ns = n.get_int("age_p99_ns", kAny, 0);
+    t.age_max_ns = n.get_int("age_max_ns", kAny, 0);
     r.received.push_back(t);
+  }
+  r.impairment_seed = static_cast<uint64_t>(root.get_double("impairment_seed", kCount, 0));
+  for (const auto& n : root.get_node_list("links")) {
+    ImpairedLink l;
+    l.to = n.get_string("to");
+    l.profile = n.get_string("profile");
+    l.messages = static_cast<uint64_t>(n.get_double("messages", kCount));
+    l.delivered = static_cast<uint64_t>(n.get_double("delivered", kCount));
+    l.lost = static_cast<uint64_t>(n.get_double("lost", kCount));
+    l.outage = static_cast<uint64_t>(n.get_double("outage", kCount));
+    l.queue = static_cast<uint64_t>(n.get_double("queue", kCount));
+    l.duplicated = static_cast<uint64_t>(n.get_double("duplicated", kCount));
+    l.reordered = static_cast<uint64_t>(n.get_double("reordered", kCount));
+    l.loss_burst_mean = n.get_double("loss_burst_mean", kAny);
+    l.loss_burst_max = static_cast<uint64_t>(n.get_double("loss_burst_max", kCount));
+    l.delay_p50_ns = n.get_int("delay_p50_ns", kAny);
+    l.delay_p99_ns = n.get_int("delay_p99_ns", kAny);
+    l.delay_max_ns = n.get_int("delay_max_ns", kAny);
+    l.configured_loss = n.get_double("configured_loss", kAny);
+    l.configured_delay_ns = n.get_int("configured_delay_ns", kAny);
+    r.links.push_back(l);
   }
   if (auto counters = root.optional_child("counters")) {
     for (const auto& key : counters->keys()) r.counters.emplace_back(key, counters->get_double(key, kAny));

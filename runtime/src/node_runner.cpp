@@ -118,6 +118,7 @@ int run(const CommandLine& cli, const NodeDescription& description) {
     report.run_time_s = static_cast<double>(monotonic_now_ns() - started_ns) * 1e-9;
     report.add_loop(pacer.stats());
     logic->fill_report(report);
+    report.add_links(participant);
   }  // the participant and all its entities are deleted here
   if (const int64_t signalled = shutdown_requested_at_ns(); signalled > 0) {
     report.shutdown_ms = static_cast<double>(monotonic_now_ns() - signalled) * 1e-6;

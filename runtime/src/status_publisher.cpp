@@ -7,12 +7,38 @@ namespace teleop::runtime {
 
 StatusPublisher::StatusPublisher(transport::Participant& participant, const std::string& node_name,
                                  msg::NodeRole role, double loop_rate_hz, double status_rate_hz)
-    : publication_(participant, transport::topics::kNodeStatus, node_name),
+    : impairment_(participant.impairment()),
+      links_(msg::MAX_LINKS),
+      publication_(participant, transport::topics::kNodeStatus, node_name),
       cycles_per_status_(std::max<uint64_t>(1, static_cast<uint64_t>(std::llround(loop_rate_hz / status_rate_hz)))) {
   publication_.sample().role(role);
   publication_.sample().loop().rate_hz(loop_rate_hz);
   faults_.reserve(msg::MAX_FAULTS);
   publication_.sample().fault_codes().reserve(msg::MAX_FAULTS);
+  publication_.sample().links().reserve(msg::MAX_LINKS);
+}
+
+void StatusPublisher::fill_links() {
+  auto& out = publication_.sample().links();
+  out.clear();
+  if (impairment_ == nullptr) return;
+  const size_t n = impairment_->snapshot(links_.data(), links_.size());
+  for (size_t i = 0; i < n; ++i) {
+    const auto& snap = links_[i];
+    out.emplace_back();  // within the reserved capacity: no allocation
+    msg::LinkStatistics& l = out.back();
+    l.peer(snap.to->c_str());
+    l.profile(snap.profile->c_str());
+    l.messages(snap.stats.messages);
+    l.delivered(snap.stats.delivered);
+    l.lost(snap.stats.lost);
+    l.outage(snap.stats.outage);
+    l.queue(snap.stats.queue);
+    l.duplicated(snap.stats.duplicated);
+    l.reordered(snap.stats.reordered);
+    l.delay_p50_ns(snap.stats.delay.percentile_ns(0.5));
+    l.delay_p99_ns(snap.stats.delay.percentile_ns(0.99));
+  }
 }
 
 void StatusPublisher::maybe_publish(const CycleTick& tick, const NodeLogic& logic, const PacerStats& loop) {
@@ -33,6 +59,7 @@ void StatusPublisher::publish(msg::NodeState state, const NodeLogic& logic, cons
   l.lateness_p50_ns(loop.lateness.percentile_ns(0.50));
   l.lateness_p99_ns(loop.lateness.percentile_ns(0.99));
   l.lateness_max_ns(loop.lateness.max_ns());
+  fill_links();
   publication_.publish();
 }
 

@@ -183,7 +183,7 @@ TEST(NodeReport, TakesStreamFiguresFromSequenceTracker) {
     t.on_sample(seq, rx - 20'000, rx);
     rx += 1'000'000;
   }
-  const ReceivedTopic r = NodeReport::received_from("topic/x", t, 9, 2);
+  const ReceivedTopic r = NodeReport::received_from("topic/x", t, DurationHistogram{}, 9, 2);
   EXPECT_EQ(r.topic, "topic/x");
   EXPECT_EQ(r.received, t.received());
   EXPECT_EQ(r.expected, 6u);

@@ -83,9 +83,21 @@ std::vector<LinkReport> ImpairmentEngine::reports() const {
   std::vector<LinkReport> out;
   for (const auto& l : links_) {
     std::lock_guard lock(l->mutex);
-    out.push_back({self_, l->to, l->model.profile().name, l->model.stats()});
+    const LinkPhase& first = l->model.profile().phases.front();
+    out.push_back({self_, l->to, l->model.profile().name, l->model.stats(), first.loss.expected_loss_rate(),
+                   first.delay_ns});
   }
   return out;
+}
+
+size_t ImpairmentEngine::snapshot(Snapshot* out, size_t capacity) const {
+  size_t n = 0;
+  for (const auto& l : links_) {
+    if (n == capacity) break;
+    std::lock_guard lock(l->mutex);
+    out[n++] = Snapshot{&l->to, &l->model.profile().name, l->model.stats()};
+  }
+  return n;
 }
 
 }  // namespace teleop::transport::impairment

@@ -27,6 +27,8 @@ class SequenceTracker {
   /// Receive rate over the span between the first and last sample received, in Hz.
   double rate_hz() const;
   const DurationHistogram& latency() const { return latency_; }
+  /// Lengths of the sequence gaps seen on arrival (runs of samples missed in a row).
+  const DurationHistogram& gaps() const { return gaps_; }
   int64_t last_receive_ns() const { return last_receive_ns_; }
 
  private:
@@ -42,6 +44,7 @@ class SequenceTracker {
   static constexpr uint64_t kWindow = 64;
   uint64_t window_ = 0;
   DurationHistogram latency_;
+  DurationHistogram gaps_;
 };
 
 }  // namespace teleop

@@ -32,6 +32,34 @@ struct ReceivedTopic {
   int64_t latency_max_ns = 0;
   uint64_t deadline_missed = 0;
   uint64_t liveliness_lost = 0;
+  /// Runs of samples missed in a row, as seen on arrival.
+  uint64_t gap_max = 0;
+  double gap_mean = 0.0;
+  /// Age of the newest sample each time the loop looked (application-level effect).
+  int64_t age_p50_ns = 0;
+  int64_t age_p99_ns = 0;
+  int64_t age_max_ns = 0;
+};
+
+/// What the impairment did to one outgoing link of the node.
+struct ImpairedLink {
+  std::string to;
+  std::string profile;
+  uint64_t messages = 0;
+  uint64_t delivered = 0;
+  uint64_t lost = 0;
+  uint64_t outage = 0;
+  uint64_t queue = 0;
+  uint64_t duplicated = 0;
+  uint64_t reordered = 0;
+  double loss_burst_mean = 0.0;
+  uint64_t loss_burst_max = 0;
+  int64_t delay_p50_ns = 0;
+  int64_t delay_p99_ns = 0;
+  int64_t delay_max_ns = 0;
+  /// Configured (expected) loss rate and base delay of the profile's first phase.
+  double configured_loss = 0.0;
+  int64_t configured_delay_ns = 0;
 };
 
 struct NodeReport {
@@ -50,6 +78,9 @@ struct NodeReport {
   double shutdown_ms = -1.0;
   std::vector<PublishedTopic> published;
   std::vector<ReceivedTopic> received;
+  /// Impaired outgoing links (empty without impairment) and the seed of their decisions.
+  std::vector<ImpairedLink> links;
+  uint64_t impairment_seed = 0;
   /// Extra per-node figures (name, value), e.g. rejected commands.
   std::vector<std::pair<std::string, double>> counters;
 
@@ -62,12 +93,15 @@ struct NodeReport {
 
   template <typename T>
   void add(const transport::Subscription<T>& sub) {
-    received.push_back(received_from(sub.topic_name(), sub.stats(), sub.reader().deadline_missed(),
+    received.push_back(received_from(sub.topic_name(), sub.stats(), sub.age(), sub.reader().deadline_missed(),
                                      sub.reader().liveliness_lost()));
   }
 
-  static ReceivedTopic received_from(const std::string& topic, const SequenceTracker& stats, uint64_t deadline_missed,
-                                     uint64_t liveliness_lost);
+  /// Adds the participant's impaired links.
+  void add_links(const transport::Participant& participant);
+
+  static ReceivedTopic received_from(const std::string& topic, const SequenceTracker& stats,
+                                     const DurationHistogram& age, uint64_t deadline_missed, uint64_t liveliness_lost);
 };
 
 /// Writes the report as YAML. Throws std::runtime_error when the file cannot be written.

@@ -25,6 +25,10 @@ class StatusPublisher {
   void publish_stopping(const NodeLogic& logic, const PacerStats& loop, int64_t timeout_ns);
 
  private:
+  void fill_links();
+
+  const transport::impairment::ImpairmentEngine* impairment_;
+  std::vector<transport::impairment::ImpairmentEngine::Snapshot> links_;
   transport::Publication<msg::NodeStatus> publication_;
   std::vector<uint32_t> faults_;
   uint64_t cycles_per_status_;

@@ -36,6 +36,8 @@ class Subscription {
       }
       ++taken;
     }
+    // what the loop works with: how old the newest sample is now
+    if (has_sample_) age_.record(system_now_ns() - latest_.header().stamp_ns());
     return taken;
   }
 
@@ -49,6 +51,8 @@ class Subscription {
 
   const std::string& topic_name() const { return topic_name_; }
   const SequenceTracker& stats() const { return tracker_; }
+  /// Age of the newest sample at each poll (source stamp to now, CLOCK_REALTIME).
+  const DurationHistogram& age() const { return age_; }
   const Reader<T>& reader() const { return reader_; }
 
  private:
@@ -59,6 +63,7 @@ class Subscription {
   bool has_sample_ = false;
   int64_t latest_receive_mono_ns_ = 0;
   SequenceTracker tracker_;
+  DurationHistogram age_;
 };
 
 }  // namespace teleop::transport

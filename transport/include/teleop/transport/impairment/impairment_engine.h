@@ -24,6 +24,8 @@ struct LinkReport {
   std::string to;
   std::string profile;
   LinkStats stats;
+  double configured_loss;
+  int64_t configured_delay_ns;
 };
 
 class ImpairmentEngine {
@@ -43,6 +45,15 @@ class ImpairmentEngine {
   void shutdown();
 
   std::vector<LinkReport> reports() const;
+
+  /// Copies up to `capacity` links' names (pointers into the engine, stable) and statistics
+  /// into `out`; returns how many. No allocation: for status publication from the loop.
+  struct Snapshot {
+    const std::string* to;
+    const std::string* profile;
+    LinkStats stats;
+  };
+  size_t snapshot(Snapshot* out, size_t capacity) const;
   const DelayLine& delay_line() const { return delay_line_; }
   uint64_t seed() const { return seed_; }
 
