@@ -124,3 +124,23 @@ TEST(Qos, WriterAndReaderOfEachPresetAreCompatible) {
 
 }  // namespace
 }  // namespace teleop::transport
+
+namespace teleop::transport {
+namespace {
+
+TEST(Qos, EventPresetIsReliableKeepAllWithFastHeartbeats) {
+  ParticipantConfig c;
+  const auto w = writer_qos(QosPreset::kEvent, c);
+  const auto r = reader_qos(QosPreset::kEvent, c);
+  EXPECT_EQ(w.reliability().kind, eprosima::fastdds::dds::RELIABLE_RELIABILITY_QOS);
+  EXPECT_EQ(w.history().kind, eprosima::fastdds::dds::KEEP_ALL_HISTORY_QOS);
+  EXPECT_EQ(r.history().kind, eprosima::fastdds::dds::KEEP_ALL_HISTORY_QOS);
+  EXPECT_EQ(w.durability().kind, eprosima::fastdds::dds::VOLATILE_DURABILITY_QOS);
+  EXPECT_EQ(w.resource_limits().max_samples, kEventQueueDepth);
+  EXPECT_EQ(r.resource_limits().max_samples, kEventQueueDepth);
+  EXPECT_EQ(w.reliable_writer_qos().times.heartbeatPeriod, to_dds_duration(20'000'000));
+  EXPECT_STREQ(to_string(QosPreset::kEvent), "event");
+}
+
+}  // namespace
+}  // namespace teleop::transport

@@ -30,6 +30,12 @@ void apply_common(Qos& qos, QosPreset preset, const ParticipantConfig& config) {
       qos.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
       qos.durability().kind = dds::TRANSIENT_LOCAL_DURABILITY_QOS;
       break;
+    case QosPreset::kEvent:
+      qos.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
+      qos.durability().kind = dds::VOLATILE_DURABILITY_QOS;
+      qos.history().kind = dds::KEEP_ALL_HISTORY_QOS;
+      qos.history().depth = kEventQueueDepth;
+      break;
   }
 }
 
@@ -39,6 +45,7 @@ const char* to_string(QosPreset preset) {
   switch (preset) {
     case QosPreset::kStream: return "stream";
     case QosPreset::kState: return "state";
+    case QosPreset::kEvent: return "event";
   }
   return "?";
 }
@@ -50,11 +57,17 @@ dds::DataWriterQos writer_qos(QosPreset preset, const ParticipantConfig& config)
   qos.liveliness().announcement_period = to_dds_duration(config.liveliness_lease_ns / 3);
   // sending from the control thread itself: one sendto() per sample, no extra hand-off
   qos.publish_mode().kind = dds::SYNCHRONOUS_PUBLISH_MODE;
-  if (preset == QosPreset::kState) {
-    // the 3 s default would leave a lost state sample unrepaired for seconds
-    qos.reliable_writer_qos().times.heartbeatPeriod = to_dds_duration(100'000'000);
+  if (preset == QosPreset::kState || preset == QosPreset::kEvent) {
+    // the 3 s default would leave a lost sample unrepaired for seconds
+    qos.reliable_writer_qos().times.heartbeatPeriod =
+        to_dds_duration(preset == QosPreset::kEvent ? 20'000'000 : 100'000'000);
     // a reliable write never blocks the loop for long when the history is full
     qos.reliability().max_blocking_time = to_dds_duration(100'000);
+  }
+  if (preset == QosPreset::kEvent) {
+    qos.resource_limits().max_instances = 1;
+    qos.resource_limits().max_samples_per_instance = kEventQueueDepth;
+    qos.resource_limits().max_samples = kEventQueueDepth;
   }
   return qos;
 }
@@ -65,7 +78,7 @@ dds::DataReaderQos reader_qos(QosPreset preset, const ParticipantConfig& config)
   // readers are drained periodically: with unsynchronised loops two stream samples can arrive
   // between two polls, and several nodes write the one (unkeyed) status topic; a depth of 1
   // would silently overwrite (and hide) samples. Writers keep 1: late joiners get the last.
-  qos.history().depth = kReaderDepth;
+  qos.history().depth = preset == QosPreset::kEvent ? kEventQueueDepth : kReaderDepth;
   // preallocate exactly the history, nothing grows at run time
   qos.resource_limits().max_instances = 1;
   qos.resource_limits().max_samples_per_instance = qos.history().depth;

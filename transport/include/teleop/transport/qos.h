@@ -16,7 +16,14 @@ enum class QosPreset {
   /// Low-rate state that late joiners need (node status, configuration): reliable, writer
   /// keep-last 1, transient-local, so a reader that starts late still gets the last value.
   kState,
+  /// Discrete events that must all arrive in order (mode switches, clutch, hand enable):
+  /// reliable, keep-all (bounded), volatile, with fast heartbeats so a loss is repaired within
+  /// tens of milliseconds.
+  kEvent,
 };
+
+/// Samples an event writer holds until acknowledged before write() blocks.
+constexpr int32_t kEventQueueDepth = 1024;
 
 /// Samples a reader keeps between two polls of its loop (every preset).
 constexpr int32_t kReaderDepth = 16;
