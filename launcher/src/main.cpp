@@ -5,6 +5,7 @@
 
 #include "teleop/common/config.h"
 #include "teleop/launcher/launcher.h"
+#include "teleop/launcher/sweep.h"
 
 int main(int argc, char** argv) {
   using namespace teleop::launcher;
@@ -23,6 +24,20 @@ int main(int argc, char** argv) {
   launch_cmd->add_option("--seed", options.seed, "seed of the impairment decisions (printed, so a run can be repeated)");
   launch_cmd->add_option("--report-dir", options.report_dir, "directory for the nodes' reports (default: a new one in /tmp)");
   launch_cmd->add_option("--bin-dir", options.bin_dir, "directory of the node executables (default: next to teleop)");
+  std::vector<std::string> profiles;
+  std::string csv_path = "sweep.csv";
+  CLI::App* sweep_cmd =
+      app.add_subcommand("sweep", "run a scenario once per network profile and write one combined CSV");
+  sweep_cmd->add_option("scenario", scenario_path, "scenario YAML file")->required()->check(CLI::ExistingFile);
+  sweep_cmd->add_option("-p,--profiles", profiles, "network profiles (names in config/network or files; 'none' = unimpaired)")
+      ->required()
+      ->delimiter(',');
+  sweep_cmd->add_option("--csv", csv_path, "combined results (default sweep.csv)");
+  sweep_cmd->add_option("-d,--duration", options.duration_s, "run time of each run in seconds")->check(CLI::NonNegativeNumber);
+  sweep_cmd->add_option("--domain", options.domain_id, "DDS domain id for every node")->check(CLI::Range(0, 232));
+  sweep_cmd->add_option("--seed", options.seed, "seed of the impairment decisions");
+  sweep_cmd->add_option("--report-dir", options.report_dir, "keep each run's node reports under DIR/<profile>");
+  sweep_cmd->add_option("--bin-dir", options.bin_dir, "directory of the node executables");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -30,6 +45,7 @@ int main(int argc, char** argv) {
   }
   try {
     const Scenario scenario = load_scenario(scenario_path);
+    if (sweep_cmd->parsed()) return sweep(scenario, options, profiles, csv_path).failed_runs == 0 ? 0 : 1;
     const LaunchResult result = launch(scenario, options);
     std::printf("%s", format_summary(result.summary, scenario.name).c_str());
     std::printf("\nreports: %s\n", result.report_dir.c_str());

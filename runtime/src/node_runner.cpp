@@ -67,6 +67,12 @@ void log_summary(const NodeReport& r) {
   spdlog::info("{}: {} cycles at {:.0f} Hz, {} overruns, {} skipped, lateness p50 {:.1f} us p99 {:.1f} us max {:.1f} us",
                r.name, r.cycles, r.rate_hz, r.overruns, r.skipped, r.lateness_p50_ns * 1e-3,
                r.lateness_p99_ns * 1e-3, r.lateness_max_ns * 1e-3);
+  for (const auto& l : r.links) {
+    spdlog::info("{}: link to {} ({}, seed {}): {} messages, {} lost, {} in outages, {} queue drops, {} duplicated, "
+                 "{} reordered, added delay p50 {:.2f} ms p99 {:.2f} ms",
+                 r.name, l.to, l.profile, r.impairment_seed, l.messages, l.lost, l.outage, l.queue, l.duplicated,
+                 l.reordered, l.delay_p50_ns * 1e-6, l.delay_p99_ns * 1e-6);
+  }
   for (const auto& t : r.received) {
     spdlog::info("{}: {} received {} of {} ({} lost), {:.1f} Hz, latency p50 {:.1f} us p99 {:.1f} us", r.name, t.topic,
                  t.received, t.expected, t.lost, t.rate_hz, t.latency_p50_ns * 1e-3, t.latency_p99_ns * 1e-3);

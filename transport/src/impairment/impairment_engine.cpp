@@ -22,6 +22,7 @@ ImpairmentEngine::ImpairmentEngine(const ImpairmentConfig& config, const std::st
   for (const auto& l : config.links) {
     // each link its own stream of decisions, reproducible from the run's seed
     const uint64_t link_seed = config.seed ^ hash_name((self_ + "->" + l.to).c_str());
+    all_transparent_ = all_transparent_ && l.profile.is_transparent();
     auto link = std::make_unique<Link>(l.to, l.profile, link_seed, start);
     if (l.to == kAnyPeer) {
       any_peer_ = link.get();
@@ -43,7 +44,12 @@ ImpairmentEngine::Link* ImpairmentEngine::link_for(const rtps::Locator_t& destin
 }
 
 bool ImpairmentEngine::send(rtps::SenderResource* low, const uint8_t* data, uint32_t size,
-                            eprosima::fastdds::rtps::LocatorsIterator* begin, eprosima::fastdds::rtps::LocatorsIterator* end) {
+                            eprosima::fastdds::rtps::LocatorsIterator* begin, eprosima::fastdds::rtps::LocatorsIterator* end,
+                            const std::chrono::steady_clock::time_point& timeout) {
+  if (all_transparent_) {
+    passed_through_.fetch_add(1, std::memory_order_relaxed);
+    return low->send(data, size, begin, end, timeout);
+  }
   const bool pass_through = !active_.load(std::memory_order_acquire) ||
                             (exclude_discovery_ && is_discovery_message(data, size));
   const int64_t now = monotonic_now_ns();

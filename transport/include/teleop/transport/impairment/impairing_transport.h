@@ -33,8 +33,8 @@ class ImpairingTransport : public eprosima::fastdds::rtps::ChainingTransport {
 
   bool send(eprosima::fastrtps::rtps::SenderResource* low_sender_resource, const eprosima::fastrtps::rtps::octet* buffer,
             uint32_t size, eprosima::fastrtps::rtps::LocatorsIterator* begin,
-            eprosima::fastrtps::rtps::LocatorsIterator* end, const std::chrono::steady_clock::time_point&) override {
-    return engine_->send(low_sender_resource, buffer, size, begin, end);
+            eprosima::fastrtps::rtps::LocatorsIterator* end, const std::chrono::steady_clock::time_point& timeout) override {
+    return engine_->send(low_sender_resource, buffer, size, begin, end, timeout);
   }
 
   void receive(eprosima::fastdds::rtps::TransportReceiverInterface* next_receiver,

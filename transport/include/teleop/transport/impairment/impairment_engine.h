@@ -35,7 +35,11 @@ class ImpairmentEngine {
 
   /// The chaining transport's send: decides per destination and sends now or later.
   bool send(eprosima::fastrtps::rtps::SenderResource* low, const uint8_t* data, uint32_t size,
-            eprosima::fastdds::rtps::LocatorsIterator* begin, eprosima::fastdds::rtps::LocatorsIterator* end);
+            eprosima::fastdds::rtps::LocatorsIterator* begin, eprosima::fastdds::rtps::LocatorsIterator* end,
+            const std::chrono::steady_clock::time_point& timeout);
+
+  /// Messages that took the fast path of an all-transparent configuration.
+  uint64_t passed_through() const { return passed_through_.load(std::memory_order_relaxed); }
 
   /// Learns where peers listen (participant discovery).
   PeerDirectory& peers() { return peers_; }
@@ -75,6 +79,9 @@ class ImpairmentEngine {
   PeerDirectory peers_;
   DelayLine delay_line_;
   std::atomic<bool> active_{true};
+  // every link configured to do nothing: forward whole messages, no per-destination decisions
+  bool all_transparent_ = true;
+  std::atomic<uint64_t> passed_through_{0};
 };
 
 }  // namespace teleop::transport::impairment
