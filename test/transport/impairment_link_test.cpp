@@ -48,9 +48,11 @@ double counter(const runtime::NodeReport& r, const std::string& name) {
 
 TEST(ImpairedLink, BestEffortStreamLosesTheConfiguredFraction) {
   constexpr int kSamples = 4000;
+  // discovery unimpaired: the stream starts from a matched state on both sides (with discovery
+  // impaired too, the reader may learn of the writer a second after the writer learnt of it)
   const LinkRun run = run_link({"--count", std::to_string(kSamples), "--profile", source("config/network/lossy-20.yaml"),
-                                "--seed", "11"},
-                               {"--count", std::to_string(kSamples), "--duration", "30"});
+                                "--seed", "11", "--exclude-discovery"},
+                               {"--count", std::to_string(kSamples), "--duration", "30", "--idle-exit"});
   ASSERT_EQ(run.sub.received.size(), 1u);
   const auto& rx = run.sub.received[0];
   ASSERT_GT(rx.expected, 0.9 * kSamples);
@@ -99,6 +101,17 @@ TEST(ImpairedLink, LivelinessExpiresDuringALongOutageAndRecoversAfterIt) {
   EXPECT_EQ(counter(run.sub, "alive_writers_at_end"), 1.0) << "the writer is alive again after the outage";
   EXPECT_EQ(rx.last_seq, static_cast<uint64_t>(kSamples)) << "samples flow again";
   EXPECT_NEAR(static_cast<double>(rx.gap_max), 3000.0, 60.0);
+}
+
+TEST(ImpairedLink, DiscoveryFilterLetsPeersMatchWhileAllUserDataIsLost) {
+  const std::string profile = write_profile(
+      "profile:\n  name: black-hole\n  loss: {model: bernoulli, probability: 1.0}\n");
+  // the publisher only starts once matched: it would fail after 20 s if discovery were lost
+  const LinkRun run = run_link({"--count", "500", "--profile", profile, "--exclude-discovery"},
+                               {"--count", "500", "--duration", "3"});
+  EXPECT_EQ(run.pub.published.at(0).sent, 500u);
+  EXPECT_EQ(run.sub.received.at(0).received, 0u);
+  EXPECT_GE(run.pub.links.at(0).lost, 500u);
 }
 
 }  // namespace

@@ -29,6 +29,8 @@ struct Options {
   std::string profile;
   uint64_t seed = 1;
   int64_t lease_ms = 500;
+  bool exclude_discovery = false;
+  bool idle_exit = false;
   std::string report;
 };
 
@@ -44,6 +46,7 @@ transport::ParticipantConfig participant_config(const Options& o) {
   c.participant_lease_ns = 20 * kNsPerS;
   if (!o.profile.empty()) {
     c.impairment.seed = o.seed;
+    c.impairment.exclude_discovery = o.exclude_discovery;
     c.impairment.links.push_back({transport::impairment::kAnyPeer, transport::impairment::load_link_profile(o.profile)});
   }
   return c;
@@ -105,8 +108,9 @@ int subscribe(const Options& o) {
     pacer.wait_next();
     sub.poll();
     max_alive = std::max(max_alive, sub.reader().alive_writers());
-    // done early once the last sample arrived
+    // done early once the last sample arrived, or the stream has been silent for a second
     if (sub.has_sample() && sub.latest().header().seq() >= o.count) break;
+    if (sub.has_sample() && sub.age_ns(monotonic_now_ns()) > kNsPerS && o.idle_exit) break;
   }
   std::printf("probe %s: received %lu, liveliness lost %lu times\n", o.name.c_str(),
               static_cast<unsigned long>(sub.stats().received()), static_cast<unsigned long>(sub.reader().liveliness_lost()));
@@ -138,6 +142,8 @@ int main(int argc, char** argv) {
   app.add_option("--linger", o.linger_s, "publisher: time to stay up after the last sample [s]");
   app.add_option("--profile", o.profile, "impairment profile file for every outgoing link")->check(CLI::ExistingFile);
   app.add_option("--seed", o.seed);
+  app.add_flag("--idle-exit", o.idle_exit, "subscriber: stop after 1 s without samples (once some came)");
+  app.add_flag("--exclude-discovery", o.exclude_discovery, "leave discovery traffic unimpaired");
   app.add_option("--lease-ms", o.lease_ms, "liveliness lease");
   app.add_option("--report", o.report, "write a node report here");
   CLI11_PARSE(app, argc, argv);
