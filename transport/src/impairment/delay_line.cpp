@@ -33,6 +33,15 @@ struct OneLocator final : eprosima::fastdds::rtps::LocatorsIterator {
 };
 #pragma GCC diagnostic pop
 
+// tells the core we are spinning (saves power, yields to a hyper-thread sibling)
+inline void cpu_relax() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#elif defined(__aarch64__)
+  asm volatile("yield");
+#endif
+}
+
 }  // namespace
 
 bool send_to_one(rtps::SenderResource* sender, const uint8_t* data, uint32_t size, const rtps::Locator_t& destination) {
@@ -98,9 +107,24 @@ void DelayLine::run() {
       continue;
     }
     const int64_t due = slots_[heap_.front()].due_ns;
-    const int64_t now = monotonic_now_ns();
-    if (due > now) {
-      wake_.wait_until(lock, std::chrono::steady_clock::time_point(std::chrono::nanoseconds(due)));
+    int64_t now = monotonic_now_ns();
+    const int64_t wake_at = due - wake_early_ns_;
+    if (now < wake_at) {
+      wake_.wait_until(lock, std::chrono::steady_clock::time_point(std::chrono::nanoseconds(wake_at)));
+      const int64_t woke = monotonic_now_ns();
+      if (woke >= wake_at && !heap_.empty() && slots_[heap_.front()].due_ns == due) {
+        // learn the timer's wake-up lateness (EWMA, 1/8) and wake that much (plus margin) early
+        const int64_t lateness = woke - wake_at;
+        const int64_t target = std::clamp(lateness + kMinWakeEarlyNs, kMinWakeEarlyNs, kMaxWakeEarlyNs);
+        wake_early_ns_ += (target - wake_early_ns_) / 8;
+      }
+      continue;
+    }
+    if (now < due) {
+      // the last few microseconds: spin without the lock, so pushes are not held up
+      lock.unlock();
+      while ((now = monotonic_now_ns()) < due) cpu_relax();
+      lock.lock();
       continue;
     }
     const uint32_t slot = heap_pop();

@@ -64,6 +64,11 @@ class DelayLine {
   uint64_t dropped_full_ = 0;
   uint64_t dropped_at_stop_ = 0;
   int64_t max_lateness_ns_ = 0;
+  // how long before a due time the thread goes to sleep's end: its learnt wake-up lateness
+  // plus a margin; the rest it spins, so messages leave on time despite slow timer wake-ups
+  int64_t wake_early_ns_ = kMinWakeEarlyNs;
+  static constexpr int64_t kMinWakeEarlyNs = 20'000;
+  static constexpr int64_t kMaxWakeEarlyNs = 300'000;
   mutable std::mutex mutex_;
   std::condition_variable wake_;
   std::thread thread_;
