@@ -287,16 +287,27 @@ Result<CanFrame> encode_sdo_abort(NodeId node, uint16_t index, uint8_t subindex,
   return sdo_frame((from_server ? cob::kSdoTx : cob::kSdoRx) + node, sdo_cs::kAbort, index, subindex, abort_code);
 }
 
-Result<SdoMessage> decode_sdo_request(const CanFrame& frame) {
+namespace {
+
+// checks the frame of an SDO on the COB-ID range starting at `base` and reads what every SDO
+// carries: node, multiplexer (index, subindex) and the 4 data bytes
+CanError read_sdo_header(const CanFrame& frame, uint32_t base, SdoMessage& m) {
   if (const CanError e = check_data_frame(frame); e != CanError::kNone) return e;
-  if (frame.id <= cob::kSdoRx || frame.id > cob::kSdoRx + kMaxNodeId) return CanError::kInvalidId;
+  if (frame.id <= base || frame.id > base + kMaxNodeId) return CanError::kInvalidId;
   if (frame.dlc != 8) return CanError::kInvalidDlc;
-  SdoMessage m;
-  m.node = static_cast<NodeId>(frame.id - cob::kSdoRx);
-  const uint8_t cs = frame.data[0];
+  m.node = static_cast<NodeId>(frame.id - base);
   m.index = le::get_u16(&frame.data[1]);
   m.subindex = frame.data[3];
   m.data = le::get_u32(&frame.data[4]);
+  return CanError::kNone;
+}
+
+}  // namespace
+
+Result<SdoMessage> decode_sdo_request(const CanFrame& frame) {
+  SdoMessage m;
+  if (const CanError e = read_sdo_header(frame, cob::kSdoRx, m); e != CanError::kNone) return e;
+  const uint8_t cs = frame.data[0];
   switch (cs >> 5) {
     case 1:  // initiate download
       m.type = SdoType::kDownloadRequest;
@@ -324,15 +335,9 @@ Result<SdoMessage> decode_sdo_request(const CanFrame& frame) {
 }
 
 Result<SdoMessage> decode_sdo_response(const CanFrame& frame) {
-  if (const CanError e = check_data_frame(frame); e != CanError::kNone) return e;
-  if (frame.id <= cob::kSdoTx || frame.id > cob::kSdoTx + kMaxNodeId) return CanError::kInvalidId;
-  if (frame.dlc != 8) return CanError::kInvalidDlc;
   SdoMessage m;
-  m.node = static_cast<NodeId>(frame.id - cob::kSdoTx);
+  if (const CanError e = read_sdo_header(frame, cob::kSdoTx, m); e != CanError::kNone) return e;
   const uint8_t cs = frame.data[0];
-  m.index = le::get_u16(&frame.data[1]);
-  m.subindex = frame.data[3];
-  m.data = le::get_u32(&frame.data[4]);
   switch (cs >> 5) {
     case 3:  // initiate download response
       if (cs & 0x1F) return CanError::kInvalidCommand;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "teleop/common/joint_config.h"
+#include "test_helpers.h"
 
 namespace teleop {
 namespace {
@@ -20,37 +21,9 @@ constexpr Range kAny{-1e9, 1e9};
 ConfigNode load(const std::string& text) { return ConfigNode::load_string(text, "test.yaml"); }
 
 // the message of the ConfigError `f` throws; fails the test when it throws nothing or something else
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw a non-ConfigError: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "did not throw";
-  return {};
-}
+std::string error_of(const std::function<void()>& f) { return test::error_of<ConfigError>(f); }
 
-// a file in a fresh temporary directory, removed with it
-class TempDir {
- public:
-  TempDir() {
-    dir_ = std::filesystem::temp_directory_path() / ("teleop_config_test_" + std::to_string(getpid()));
-    std::filesystem::create_directories(dir_);
-  }
-  ~TempDir() { std::filesystem::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& text) const {
-    const auto path = (dir_ / name).string();
-    std::ofstream(path) << text;
-    return path;
-  }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
- private:
-  std::filesystem::path dir_;
-};
+using test::TempDir;
 
 // ---- good cases ----
 
@@ -388,7 +361,7 @@ TEST(ConfigNode, RejectsTopLevelThatIsNotAMapping) {
 }
 
 TEST(ConfigNode, LoadsFileAndNamesItInErrors) {
-  TempDir dir;
+  TempDir dir("teleop_config_test");
   const std::string path = dir.write("node.yaml", "# a comment\nnode:\n  rate_hz: abc\n");
   const ConfigNode c = ConfigNode::load_file(path);
   EXPECT_EQ(c.file(), path);
@@ -397,20 +370,20 @@ TEST(ConfigNode, LoadsFileAndNamesItInErrors) {
 }
 
 TEST(ConfigNode, NamesFileWhenFileIsMissing) {
-  TempDir dir;
+  TempDir dir("teleop_config_test");
   const std::string path = dir.path("does_not_exist.yaml");
   EXPECT_EQ(error_of([&] { ConfigNode::load_file(path); }), path + ": cannot open the file");
 }
 
 TEST(ConfigNode, NamesFileAndLineWhenFileIsMalformed) {
-  TempDir dir;
+  TempDir dir("teleop_config_test");
   const std::string path = dir.write("bad.yaml", "a: 1\nb: 2\n  c: 3\n");
   const std::string msg = error_of([&] { ConfigNode::load_file(path); });
   EXPECT_EQ(msg.rfind(path + ":3: malformed YAML: ", 0), 0u) << msg;
 }
 
 TEST(ConfigNode, NamesFileWhenFileTopLevelIsNotAMapping) {
-  TempDir dir;
+  TempDir dir("teleop_config_test");
   const std::string list = dir.write("list.yaml", "- 1\n- 2\n");
   EXPECT_EQ(error_of([&] { ConfigNode::load_file(list); }), list + ": the top level must be a mapping of keys");
   const std::string empty = dir.write("empty.yaml", "");

@@ -11,47 +11,15 @@
 #include <utility>
 
 #include "sim_test_util.h"
+#include "test_helpers.h"
 
 namespace teleop::sim {
 namespace {
 
 using test::model_path;
 
-// the message of the exception of type E that `f` throws; fails the test otherwise
-template <typename E>
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const E& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw another exception: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "did not throw";
-  return {};
-}
-
-// files in a fresh temporary directory, removed with it
-class TempDir {
- public:
-  TempDir() {
-    dir_ = std::filesystem::temp_directory_path() / ("teleop_sim_test_" + std::to_string(getpid()));
-    std::filesystem::create_directories(dir_);
-  }
-  ~TempDir() { std::filesystem::remove_all(dir_); }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  std::string write(const std::string& name, const std::string& text) const {
-    const auto path = (dir_ / name).string();
-    std::ofstream(path) << text;
-    return path;
-  }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
- private:
-  std::filesystem::path dir_;
-};
+using teleop::test::error_of;
+using teleop::test::TempDir;
 
 TEST(MujocoModel, OwnsModelAndDataWhenFileLoads) {
   MujocoModel sim = MujocoModel::load(model_path("panda.xml"));
@@ -65,7 +33,7 @@ TEST(MujocoModel, OwnsModelAndDataWhenFileLoads) {
 }
 
 TEST(MujocoModel, ThrowsNamingTheFileWhenFileIsMissing) {
-  TempDir dir;
+  TempDir dir("teleop_sim_test");
   const std::string path = dir.path("no_such_model.xml");
   const std::string message = error_of<std::runtime_error>([&] { MujocoModel::load(path); });
   EXPECT_NE(message.find(path), std::string::npos) << message;
@@ -74,7 +42,7 @@ TEST(MujocoModel, ThrowsNamingTheFileWhenFileIsMissing) {
 }
 
 TEST(MujocoModel, ThrowsNamingTheFileAndMujocosErrorWhenXmlIsMalformed) {
-  TempDir dir;
+  TempDir dir("teleop_sim_test");
   const std::string path = dir.write("broken.xml", "<mujoco>\n  <worldbody>\n    <body>\n</mujoco>\n");
   const std::string message = error_of<std::runtime_error>([&] { MujocoModel::load(path); });
   EXPECT_NE(message.find(path), std::string::npos) << message;
@@ -83,7 +51,7 @@ TEST(MujocoModel, ThrowsNamingTheFileAndMujocosErrorWhenXmlIsMalformed) {
 }
 
 TEST(MujocoModel, ThrowsNamingTheFileAndMujocosErrorWhenModelDoesNotCompile) {
-  TempDir dir;
+  TempDir dir("teleop_sim_test");
   const std::string path = dir.write("bad_actuator.xml",
                                      "<mujoco><worldbody><body><joint name='j'/><geom size='0.1'/></body></worldbody>"
                                      "<actuator><motor joint='no_such_joint'/></actuator></mujoco>");
@@ -93,7 +61,7 @@ TEST(MujocoModel, ThrowsNamingTheFileAndMujocosErrorWhenModelDoesNotCompile) {
 }
 
 TEST(MujocoModel, ThrowsNamingTheFileWhenAnIncludedFileIsMissing) {
-  TempDir dir;
+  TempDir dir("teleop_sim_test");
   const std::string path = dir.write("includes.xml", "<mujoco><include file='missing_part.xml'/></mujoco>");
   const std::string message = error_of<std::runtime_error>([&] { MujocoModel::load(path); });
   EXPECT_NE(message.find(path), std::string::npos) << message;
