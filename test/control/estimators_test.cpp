@@ -1,0 +1,178 @@
+#include "teleop/control/estimators.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "allocation_counter.h"
+#include "control_test_util.h"
+#include "teleop/control/controllers.h"
+
+namespace teleop::control {
+namespace {
+
+using test::panda;
+using test::ready_q;
+using test::state_of;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kObserverGain = 100.0;  // 1/s: 10 ms time constant, h k_O = 0.1
+
+TEST(MomentumObserver, RecoversTheFlangeForceWhenSettled) {
+  auto sim = panda();
+  const mjModel* m = sim.model();
+  mjData* d = sim.data();
+  const double h = m->opt.timestep;
+  const int site = sim.site_id("ee_site");
+  ArmDynamics dyn(m, "ee_site");
+  dyn.update(state_of(d));
+  CartesianImpedance::Gains gains;
+  gains.nullspace_stiffness = JointVector::Constant(10);
+  gains.nullspace_damping = JointVector::Constant(5);
+  CartesianImpedance ci(dyn, gains);
+  ArmCommand cmd;
+  cmd.x_d = dyn.ee_position();
+  cmd.orientation_d = Eigen::Quaterniond(dyn.ee_rotation());
+  cmd.q_rest = ready_q();
+  ArmDynamics dyn_obs(m, "ee_site");
+  MomentumObserver observer(dyn_obs, h, JointVector::Constant(kObserverGain));
+  observer.update(state_of(d), JointVector::Zero());
+
+  const Eigen::Vector3d force(8, -6, 10);
+  Vector6 wrench = Vector6::Zero();
+  for (int k = 0; k < 3000; ++k) {
+    const JointVector applied = test::step(m, d, [&](mjData* dd) {
+      test::apply_site_force(m, dd, site, force);
+      return ci.compute(state_of(dd), cmd);
+    });
+    observer.update(state_of(d), applied);
+    wrench = wrench_from_torque(dyn_obs, observer.external_torque());
+  }
+  const Eigen::Vector3d f = wrench.head<3>();
+  const double rel = (f - force).norm() / force.norm();
+  std::printf("momentum observer, settled: F = (%.1f %.1f %.1f) N, estimate (%.3f %.3f %.3f) N, "
+              "rel. error %.3f %%, moment estimate %.3g Nm\n",
+              force.x(), force.y(), force.z(), f.x(), f.y(), f.z(), 100 * rel, wrench.tail<3>().norm());
+  EXPECT_LT(rel, 0.05);
+  EXPECT_LT(wrench.tail<3>().norm(), 0.05 * force.norm() * 0.1);
+}
+
+struct MotionErrors {
+  double observer_rms;
+  double direct_rms;
+  double truth_rms;
+};
+
+// Sinusoidal joint trajectory under joint impedance, constant force at the flange site. The
+// estimators see `quantum`-quantised joint positions (0: exact state) and, then, velocities by
+// backward differences of them (PARTI §3.2.2: dq computed numerically). RMS of the error of
+// tau_ext over all joints, 0.5 s to 3 s.
+MotionErrors run_motion(double quantum) {
+  auto sim = panda();
+  const mjModel* m = sim.model();
+  mjData* d = sim.data();
+  const double h = m->opt.timestep;
+  const int site = sim.site_id("ee_site");
+  ArmDynamics dyn(m, "ee_site");
+  ArmDynamics dyn_truth(m, "ee_site");
+  ArmDynamics dyn_est(m, "ee_site");
+  JointImpedance::Gains gains;
+  gains.stiffness << 300, 300, 300, 300, 50, 50, 20;
+  gains.damping << 30, 30, 30, 30, 3, 3, 1;
+  JointImpedance ji(dyn, gains);
+  MomentumObserver observer(dyn_est, h, JointVector::Constant(kObserverGain));
+  DirectEstimator direct(dyn_est, h, kObserverGain * h);  // the same first-order bandwidth
+  const Eigen::Vector3d force(5, 5, -10);
+
+  auto measure = [&](const ArmState& s, const JointVector& q_prev_meas) {
+    ArmState meas = s;
+    if (quantum > 0) {
+      for (int i = 0; i < kDof; ++i) meas.q[i] = quantum * std::round(s.q[i] / quantum);
+      meas.dq = (meas.q - q_prev_meas) / h;
+    }
+    return meas;
+  };
+  ArmState meas = measure(state_of(d), ready_q());
+  meas.dq.setZero();
+  observer.update(meas, JointVector::Zero());
+  direct.update(meas, JointVector::Zero());
+
+  ArmCommand cmd;
+  double obs_sq = 0, dir_sq = 0, truth_sq = 0;
+  int n = 0;
+  const double w = 2 * kPi * 0.5;
+  for (int k = 0; k < 3000; ++k) {
+    const double t = k * h;
+    cmd.q_d = ready_q();
+    cmd.dq_d.setZero();
+    for (int j : {0, 1, 3, 4, 5}) {
+      cmd.q_d[j] += 0.3 * std::sin(w * t);
+      cmd.dq_d[j] = 0.3 * w * std::cos(w * t);
+    }
+    JointVector truth;
+    const JointVector applied = test::step(m, d, [&](mjData* dd) {
+      test::apply_site_force(m, dd, site, force);
+      const ArmState s = state_of(dd);
+      dyn_truth.update(s);
+      Vector6 wrench;
+      wrench << force, Eigen::Vector3d::Zero();
+      truth = dyn_truth.jacobian().transpose() * wrench;  // tau_ext acting over this step
+      return ji.compute(s, cmd);
+    });
+    meas = measure(state_of(d), meas.q);
+    observer.update(meas, applied);
+    direct.update(meas, applied);
+    if (t >= 0.5) {
+      obs_sq += (observer.external_torque() - truth).squaredNorm();
+      dir_sq += (direct.external_torque() - truth).squaredNorm();
+      truth_sq += truth.squaredNorm();
+      n += kDof;
+    }
+  }
+  return {std::sqrt(obs_sq / n), std::sqrt(dir_sq / n), std::sqrt(truth_sq / n)};
+}
+
+TEST(MomentumObserver, HasSmallerErrorThanTheDirectEstimatorDuringMotion) {
+  const double quantum = 2 * kPi / (1 << 20);  // a 20-bit-per-turn joint encoder
+  const MotionErrors exact = run_motion(0);
+  const MotionErrors encoder = run_motion(quantum);
+  std::printf(
+      "external torque during a 0.5 Hz joint sinusoid with a constant 12.2 N flange force (RMS of tau_ext %.3f Nm):\n"
+      "  exact q, dq:               observer RMS error %.4f Nm, direct (eq. 5) %.4f Nm\n"
+      "  20-bit encoder, dq by diff: observer RMS error %.4f Nm, direct (eq. 5) %.4f Nm\n",
+      exact.truth_rms, exact.observer_rms, exact.direct_rms, encoder.observer_rms, encoder.direct_rms);
+  // Exact state: the direct estimator pairs tau_{k-1} with M and n of the new state k, an O(h)
+  // inconsistency the momentum balance of the observer does not have.
+  EXPECT_LT(exact.observer_rms, 0.8 * exact.direct_rms);
+  // Encoder: with the same first-order bandwidth (gamma = h k_O) the quantisation noise of dq
+  // dominates both about equally (measured, not a claim of the observer's superiority).
+  EXPECT_LT(encoder.observer_rms, 1.1 * encoder.direct_rms);
+}
+
+TEST(Estimators, DoNotAllocateWhenUpdated) {
+  auto sim = panda();
+  ArmDynamics dyn(sim.model(), "ee_site");
+  MomentumObserver observer(dyn, 0.001, JointVector::Constant(kObserverGain));
+  DirectEstimator direct(dyn, 0.001, 0.1);
+  ArmState s = state_of(sim.data());
+  observer.update(s, JointVector::Zero());
+  direct.update(s, JointVector::Zero());
+  Vector6 sum = Vector6::Zero();
+  {
+    teleop::test::ScopedAllocationCounter counter;
+    for (int k = 0; k < 1000; ++k) {
+      s.q[3] = ready_q()[3] + 1e-4 * k;
+      s.dq[3] = 0.1;
+      const JointVector tau = JointVector::Constant(0.01 * k);
+      observer.update(s, tau);
+      direct.update(s, tau);
+      sum += wrench_from_torque(dyn, observer.external_torque() + direct.external_torque());
+    }
+    EXPECT_EQ(counter.count(), 0u);
+  }
+  EXPECT_TRUE(sum.allFinite());
+}
+
+}  // namespace
+}  // namespace teleop::control
