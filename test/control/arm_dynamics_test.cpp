@@ -2,6 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
 #include "allocation_counter.h"
 #include "control_test_util.h"
 
@@ -39,6 +44,31 @@ TEST(ArmDynamics, MatchesTheSimulationWhenGivenItsState) {
   mj_forward(m, d);
   for (int i = 0; i < kDof; ++i) EXPECT_NEAR(dyn.gravity()[i], d->qfrc_bias[i], 1e-10) << i;
   EXPECT_GT(dyn.gravity().norm(), 1.0);
+}
+
+TEST(ArmDynamics, LeavesTheSimulationDataUntouchedWhenUpdated) {
+  auto sim = panda();
+  const mjModel* m = sim.model();
+  mjData* d = sim.data();
+  d->qvel[2] = 0.4;
+  mj_forward(m, d);
+  const std::vector<mjtNum> qpos(d->qpos, d->qpos + m->nq);
+  const std::vector<mjtNum> qm(d->qM, d->qM + m->nM);
+  const std::vector<mjtNum> xpos(d->site_xpos, d->site_xpos + 3 * m->nsite);
+  ArmDynamics dyn(m, "ee_site");
+  ArmState other;
+  other.q = test::ready_q() + JointVector::Constant(0.3);
+  other.dq = JointVector::Constant(-0.5);
+  dyn.update(other);
+  EXPECT_EQ(qpos, std::vector<mjtNum>(d->qpos, d->qpos + m->nq));
+  EXPECT_EQ(qm, std::vector<mjtNum>(d->qM, d->qM + m->nM));
+  EXPECT_EQ(xpos, std::vector<mjtNum>(d->site_xpos, d->site_xpos + 3 * m->nsite));
+  EXPECT_EQ(d->qvel[2], 0.4);
+}
+
+TEST(ArmDynamics, ThrowsWhenTheModelIsNotOneSevenJointArm) {
+  auto two_arms = sim::MujocoModel::load(std::string(TELEOP_SOURCE_DIR) + "/config/models/dual_arm.xml");
+  EXPECT_THROW(ArmDynamics(two_arms.model(), "left_ee_site"), std::invalid_argument);
 }
 
 TEST(ArmDynamics, ThrowsWhenTheSiteIsMissing) {
