@@ -1,0 +1,162 @@
+#!/usr/bin/env bash
+# Runs a test command where a vcan interface exists.
+#   run_in_vm.sh [--cache DIR] [--timeout S] [--iface NAME] --bin FILE [--bin FILE ...] -- COMMAND [ARGS...]
+# Host with vcan (root, `ip link add type vcan` works): creates a private vcan interface, runs
+# COMMAND directly with the --bin folders on PATH and TELEOP_VCAN_IF set, deletes the interface.
+# Otherwise: boots Debian's kernel in qemu (TCG is fine) from an initramfs holding busybox, the
+# CAN modules, iproute2's ip, candump/cansend, the --bin files and every library ldd lists;
+# inside, loads can, can-raw, can-dev, vcan, creates vcan0, runs COMMAND, prints
+# "TELEOP_VCAN_RESULT PASS|FAIL rc=N" on the serial console and powers off. This script exits
+# with COMMAND's status; with 1 when anything is missing (never skips) or no result came back
+# within the timeout. The kernel package and the base initramfs are cached under --cache and
+# rebuilt only when their inputs change.
+set -euo pipefail
+
+cache=""
+timeout_s=180
+bins=()
+force_vm=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --cache) cache="$2"; shift 2 ;;
+    --timeout) timeout_s="$2"; shift 2 ;;
+    --bin) bins+=("$2"); shift 2 ;;
+    --vm) force_vm=1; shift ;;
+    --) shift; break ;;
+    *) echo "run_in_vm: unknown argument $1" >&2; exit 2 ;;
+  esac
+done
+[ $# -gt 0 ] || { echo "run_in_vm: no command given (after --)" >&2; exit 2; }
+die() { echo "run_in_vm: FAIL: $*" >&2; exit 1; }
+for b in "${bins[@]}"; do [ -x "$b" ] || die "test binary $b missing or not executable"; done
+start_ns=$(date +%s%N)
+elapsed() { echo "$(( ($(date +%s%N) - start_ns) / 1000000 )) ms"; }
+
+# --- 1. the host has vcan: run directly -----------------------------------------------------
+if [ "$force_vm" -eq 0 ] && [ "$(id -u)" -eq 0 ] && command -v ip >/dev/null; then
+  probe="tvcan$$"
+  if ip link add dev "$probe" type vcan 2>/dev/null; then
+    trap 'ip link del dev "$probe" 2>/dev/null || true' EXIT
+    ip link set up "$probe"
+    path_add=""
+    for b in "${bins[@]}"; do path_add="$path_add$(cd "$(dirname "$b")" && pwd):"; done
+    echo "run_in_vm: host kernel has vcan: running directly on $probe"
+    set +e
+    PATH="$path_add$PATH" TELEOP_VCAN_IF="$probe" "$@"
+    rc=$?
+    set -e
+    echo "run_in_vm: direct run rc=$rc after $(elapsed)"
+    exit $rc
+  fi
+fi
+
+# --- 2. qemu ----------------------------------------------------------------------------------
+[ -n "$cache" ] || cache="${TMPDIR:-/tmp}/teleop-vcan-vm"
+mkdir -p "$cache"
+cache=$(cd "$cache" && pwd)
+command -v qemu-system-x86_64 >/dev/null || die "qemu-system-x86_64 not found (scripts/setup.sh installs qemu-system-x86)"
+busybox=$(command -v busybox || true)
+[ -n "$busybox" ] || die "busybox not found (busybox-static)"
+file -L "$busybox" 2>/dev/null | grep -q "statically linked" || ldd "$busybox" 2>&1 | grep -q "not a dynamic" ||
+  die "$busybox is not static (install busybox-static)"
+ipbin=$(command -v ip || echo /usr/sbin/ip); [ -x "$ipbin" ] || die "iproute2's ip not found"
+candump=$(command -v candump || true); cansend=$(command -v cansend || true)
+[ -n "$candump" ] && [ -n "$cansend" ] || die "candump/cansend not found (can-utils)"
+command -v cpio >/dev/null || die "cpio not found"
+
+# the kernel: linux-image-amd64's dependency, downloaded once into the cache
+# (a package already in the cache is used as it is: delete the cache to follow a kernel update)
+kpkg=$(cd "$cache" && ls linux-image-*-amd64_*.deb 2>/dev/null | head -1 | cut -d_ -f1 || true)
+[ -n "$kpkg" ] || kpkg=$(apt-cache depends linux-image-amd64 2>/dev/null | awk '/Depends: linux-image-[0-9]/{print $2; exit}')
+[ -n "$kpkg" ] || die "cannot tell the kernel package (apt-cache depends linux-image-amd64 found nothing)"
+deb=$(ls "$cache"/"${kpkg}"_*.deb 2>/dev/null | head -1 || true)
+if [ -z "$deb" ]; then
+  echo "run_in_vm: downloading $kpkg"
+  (cd "$cache" && apt-get download "$kpkg" >/dev/null 2>&1) || cp /var/cache/apt/archives/"${kpkg}"_*.deb "$cache"/ 2>/dev/null ||
+    die "cannot download kernel package $kpkg (apt-get download $kpkg)"
+  deb=$(ls "$cache"/"${kpkg}"_*.deb | head -1)
+fi
+kdir="$cache/kernel-$(basename "$deb" .deb)"
+if [ ! -f "$kdir/.done" ]; then
+  rm -rf "$kdir"; mkdir -p "$kdir"
+  dpkg-deb -x "$deb" "$kdir" || die "cannot extract $deb"
+  touch "$kdir/.done"
+fi
+vmlinuz=$(ls "$kdir"/boot/vmlinuz-* | head -1)
+moddir=$(ls -d "$kdir"/lib/modules/*/ | head -1)
+mods=()
+for m in net/can/can.ko net/can/can-raw.ko drivers/net/can/dev/can-dev.ko drivers/net/can/vcan.ko; do
+  f=$(ls "$moddir/kernel/$m"* 2>/dev/null | head -1 || true)
+  [ -n "$f" ] || die "module $m missing in $deb"
+  mods+=("$f")
+done
+
+# copies a binary and its ldd libraries into root $1 (binary into $3)
+add_elf() {
+  local root=$1 src=$2 dst=$3
+  mkdir -p "$root$(dirname "$dst")"
+  cp -L "$src" "$root$dst"
+  local lib
+  for lib in $(ldd "$src" 2>/dev/null | grep -o '/[^ ]*' || true); do
+    [ -e "$root$lib" ] && continue
+    mkdir -p "$root$(dirname "$lib")"
+    cp -L "$lib" "$root$lib"
+  done
+}
+
+# base image: busybox, modules, ip, can-utils, /init; keyed by everything that goes into it
+init_src="$(cd "$(dirname "$0")" && pwd)/vm_init.sh"
+[ -f "$init_src" ] || die "$init_src missing"
+key=$({ basename "$deb"; stat -c '%s' "$deb"; sha256sum "$busybox" "$ipbin" "$candump" "$cansend" "$init_src" "$0"; } |
+  sha256sum | cut -c1-16)
+base="$cache/base-$key.cpio.gz"
+if [ ! -f "$base" ]; then
+  echo "run_in_vm: building base initramfs"
+  rm -f "$cache"/base-*.cpio.gz
+  root="$cache/base-root"; rm -rf "$root"
+  mkdir -p "$root"/{bin,sbin,proc,sys,dev,tmp,etc,lib/modules,opt/teleop/bin}
+  cp "$busybox" "$root/bin/busybox"
+  cp "$init_src" "$root/init"; chmod 755 "$root/init"
+  n=0
+  for f in "${mods[@]}"; do n=$((n + 1)); cp "$f" "$root/lib/modules/$n-$(basename "$f")"; done
+  add_elf "$root" "$ipbin" /opt/teleop/bin/ip
+  add_elf "$root" "$candump" /opt/teleop/bin/candump
+  add_elf "$root" "$cansend" /opt/teleop/bin/cansend
+  (cd "$root" && find . | cpio -o -H newc --quiet | gzip -1) > "$base.tmp"
+  mv "$base.tmp" "$base"
+  rm -rf "$root"
+fi
+
+# payload: the test binaries and the command, appended as a second cpio archive
+work=$(mktemp -d "$cache/run.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+mkdir -p "$work/root/opt/teleop/bin"
+for b in "${bins[@]}"; do
+  add_elf "$work/root" "$b" "/opt/teleop/bin/$(basename "$b")"
+  # debug info only makes the initramfs big and slow to pack
+  strip --strip-debug "$work/root/opt/teleop/bin/$(basename "$b")" 2>/dev/null || true
+done
+{
+  printf 'cd /tmp\n'
+  printf '%q ' "$@"
+  printf '\n'
+} > "$work/root/opt/teleop/cmd.sh"
+(cd "$work/root" && find . | cpio -o -H newc --quiet | gzip -1) > "$work/payload.cpio.gz"
+cat "$base" "$work/payload.cpio.gz" > "$work/initrd.gz"
+
+echo "run_in_vm: booting $(basename "$vmlinuz") in qemu (timeout ${timeout_s} s), initramfs ready after $(elapsed)"
+log="$work/console.log"
+set +e
+timeout --kill-after=10 "$timeout_s" qemu-system-x86_64 -m 512 -smp 2 -nographic -no-reboot \
+  -kernel "$vmlinuz" -initrd "$work/initrd.gz" -append "console=ttyS0 quiet panic=-1" \
+  < /dev/null 2>&1 | tee "$log"
+qrc=${PIPESTATUS[0]}
+set -e
+result=$(tr -d '\r' < "$log" | grep -o 'TELEOP_VCAN_RESULT [A-Z]* rc=[0-9]*' | tail -1 || true)
+if [ -z "$result" ]; then
+  [ "$qrc" -eq 124 ] && die "no result within ${timeout_s} s (qemu killed)"
+  die "the VM ended without a result marker (qemu status $qrc)"
+fi
+rc=${result##*rc=}
+echo "run_in_vm: $result after $(elapsed) (qemu status $qrc)"
+exit "$rc"
