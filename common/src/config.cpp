@@ -1,6 +1,7 @@
 #include "teleop/common/config.h"
 
 #include <cmath>
+#include <filesystem>
 #include <set>
 #include <sstream>
 
@@ -190,6 +191,16 @@ int64_t ConfigNode::get_int(const std::string& key, Range range, int64_t fallbac
 
 double ConfigNode::get_double(const std::string& key, Range range, double fallback) const {
   return lookup(key).IsDefined() ? get_double(key, range) : (record_->used.insert(key), fallback);
+}
+
+std::string ConfigNode::get_path(const std::string& key) const {
+  const std::filesystem::path given(get_string(key));
+  const std::filesystem::path path =
+      given.is_absolute() ? given : std::filesystem::path(state_->file).parent_path() / given;
+  if (!std::filesystem::is_regular_file(path)) {
+    throw error_at(lookup(key), key, "no file " + path.lexically_normal().string());
+  }
+  return path.lexically_normal().string();
 }
 
 std::string ConfigNode::get_choice(const std::string& key, const std::vector<std::string>& choices) const {

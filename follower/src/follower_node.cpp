@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "teleop/common/joint_config.h"
+#include "teleop/follower/simple_hardware.h"
 #include "teleop/transport/joint_fields.h"
 
 namespace teleop::follower {
@@ -11,7 +12,19 @@ FollowerConfig FollowerNode::parse_config(const ConfigNode& root) {
   const ConfigNode s = root.child("follower");
   FollowerConfig c;
   const size_t n = read_joint_count(s);
-  c.model = read_joint_model(s.child("model"), n);
+  c.joints = n;
+  const std::string hardware = s.get_choice("hardware", {"simple", "mujoco"}, "simple");
+  c.hardware = hardware == "mujoco" ? FollowerConfig::Hardware::kMujoco : FollowerConfig::Hardware::kSimple;
+  // both sections may stay in the file; each is checked, the chosen one is used
+  if (auto model = s.optional_child("model")) c.model = read_joint_model(*model, n);
+  c.model.joints = n;
+  if (auto mujoco = s.optional_child("mujoco")) {
+    c.mujoco.model_path = mujoco->get_path("model");
+    c.mujoco.keyframe = mujoco->get_string("keyframe", "");
+  }
+  if (c.hardware == FollowerConfig::Hardware::kMujoco && c.mujoco.model_path.empty()) {
+    throw s.error("mujoco", "hardware: mujoco needs a mujoco section with the model file");
+  }
   c.home_rad = read_joint_list(s, "home_rad", n, Range{-2 * M_PI, 2 * M_PI}, 0.0);
   c.limits.q_min_rad = read_joint_list(s, "q_min_rad", n, Range{-2 * M_PI, 2 * M_PI}, -2.8);
   c.limits.q_max_rad = read_joint_list(s, "q_max_rad", n, Range{-2 * M_PI, 2 * M_PI}, 2.8);
@@ -30,22 +43,39 @@ FollowerConfig FollowerNode::parse_config(const ConfigNode& root) {
   return c;
 }
 
+namespace {
+
+std::unique_ptr<RobotHardware> make_hardware(const FollowerConfig& config, double rate_hz) {
+  if (config.hardware == FollowerConfig::Hardware::kSimple) {
+    return std::make_unique<SimpleHardware>(config.model, config.home_rad, 1.0 / rate_hz, config.wrench_lever_m);
+  }
+  MujocoHardwareConfig mujoco = config.mujoco;
+  mujoco.period_s = 1.0 / rate_hz;
+  auto hardware = std::make_unique<MujocoHardware>(mujoco);
+  if (hardware->joints() != config.joints) {
+    throw std::runtime_error("follower.joints is " + std::to_string(config.joints) + " but " + mujoco.model_path +
+                             " drives " + std::to_string(hardware->joints()) + " joints");
+  }
+  return hardware;
+}
+
+}  // namespace
+
 FollowerNode::FollowerNode(const FollowerConfig& config, runtime::NodeContext& context)
     : config_(config),
-      period_s_(1.0 / context.node.rate_hz),
-      model_(config.model),
-      validator_(config.model.joints, config.limits),
+      hardware_(make_hardware(config, context.node.rate_hz)),
+      validator_(config.joints, config.limits),
       command_(context.participant, transport::topics::kLeaderCommand),
       state_pub_(context.participant, transport::topics::kFollowerState, context.node.name),
       wrench_pub_(context.participant, transport::topics::kFollowerWrench, context.node.name) {
-  model_.reset(config.home_rad);
   auto& st = state_pub_.sample();
-  st.robot("follower_sim");
+  st.robot(hardware_->name());
   st.arm("single");
-  transport::presize(config.model.joints, st.q_rad(), st.dq_radps(), st.tau_measured_nm(), st.tau_ext_nm());
-  wrench_pub_.sample().frame("tool");
-  // until a command arrives, hold the home pose
-  active_.q_des_rad = config.home_rad;
+  transport::presize(config.joints, st.q_rad(), st.dq_radps(), st.tau_measured_nm(), st.tau_ext_nm());
+  wrench_pub_.sample().frame("base");
+  // until a command arrives, hold the pose the robot is in
+  if (hardware_->read(arm_) != HardwareStatus::kOk) throw std::runtime_error("the robot hardware cannot be read");
+  active_.q_des_rad = arm_.q_rad;
   active_.stiffness.fill(config.hold_stiffness_nm_per_rad);
   active_.damping.fill(config.hold_damping_nms_per_rad);
 }
@@ -58,6 +88,8 @@ void FollowerNode::take_command(int64_t now_ns) {
 }
 
 void FollowerNode::run_watchdog(int64_t now_ns) {
+  // a hardware fault is not cleared by commands arriving: it needs an operator
+  if (state_ == msg::STATE_FAULT) return;
   const bool fresh = have_command_ && now_ns - last_valid_command_ns_ < static_cast<int64_t>(config_.command_timeout_s * 1e9);
   if (fresh) {
     state_ = msg::STATE_RUNNING;
@@ -67,7 +99,7 @@ void FollowerNode::run_watchdog(int64_t now_ns) {
     // commands stopped: hold the pose we are at, softly, until they come back
     state_ = msg::STATE_SAFE_HOLD;
     ++watchdog_trips_;
-    std::copy_n(model_.q().begin(), config_.model.joints, active_.q_des_rad.begin());
+    std::copy_n(arm_.q_rad.begin(), config_.joints, active_.q_des_rad.begin());
     active_.dq_des_radps.fill(0.0);
     active_.tau_ff_nm.fill(0.0);
     active_.stiffness.fill(config_.hold_stiffness_nm_per_rad);
@@ -76,10 +108,10 @@ void FollowerNode::run_watchdog(int64_t now_ns) {
 }
 
 void FollowerNode::compute_torque() {
-  const auto& q = model_.q();
-  const auto& dq = model_.dq();
+  const auto& q = arm_.q_rad;
+  const auto& dq = arm_.dq_radps;
   const double limit = config_.limits.max_torque_nm;
-  for (size_t i = 0; i < config_.model.joints; ++i) {
+  for (size_t i = 0; i < config_.joints; ++i) {
     const double tau = active_.stiffness[i] * (active_.q_des_rad[i] - q[i]) +
                        active_.damping[i] * (active_.dq_des_radps[i] - dq[i]) + active_.tau_ff_nm[i];
     // torque saturation per joint, always
@@ -89,20 +121,23 @@ void FollowerNode::compute_torque() {
 }
 
 void FollowerNode::publish_state() {
-  const size_t n = config_.model.joints;
+  const size_t n = config_.joints;
   auto& st = state_pub_.sample();
-  transport::copy_joints(model_.q(), n, st.q_rad());
-  transport::copy_joints(model_.dq(), n, st.dq_radps());
-  transport::copy_joints(tau_nm_, n, st.tau_measured_nm());
-  transport::copy_joints(model_.contact_torque(), n, st.tau_ext_nm());
+  transport::copy_joints(arm_.q_rad, n, st.q_rad());
+  transport::copy_joints(arm_.dq_radps, n, st.dq_radps());
+  transport::copy_joints(arm_.tau_measured_nm, n, st.tau_measured_nm());
+  transport::copy_joints(arm_.tau_ext_nm, n, st.tau_ext_nm());
   state_pub_.publish();
 
-  // the contact torque on joint 0 seen as a force at the tool, normal to the lever
+  const auto& f = arm_.force_ext_n;
+  peak_external_force_n_ = std::max(peak_external_force_n_, std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]));
   auto& w = wrench_pub_.sample();
-  w.force_n().x(model_.contact_torque()[0] / config_.wrench_lever_m);
-  w.force_n().y(0.0);
-  w.force_n().z(0.0);
-  w.torque_nm().z(model_.contact_torque()[0]);
+  w.force_n().x(arm_.force_ext_n[0]);
+  w.force_n().y(arm_.force_ext_n[1]);
+  w.force_n().z(arm_.force_ext_n[2]);
+  w.torque_nm().x(arm_.torque_ext_nm[0]);
+  w.torque_nm().y(arm_.torque_ext_nm[1]);
+  w.torque_nm().z(arm_.torque_ext_nm[2]);
   wrench_pub_.publish();
 }
 
@@ -110,11 +145,16 @@ void FollowerNode::cycle(const CycleTick& tick) {
   take_command(tick.now_ns);
   run_watchdog(tick.now_ns);
   compute_torque();
-  model_.step(tau_nm_, period_s_);
+  // a robot that refuses a command or cannot be read is a fault: hold what we have, report it
+  if (hardware_->write(tau_nm_) != HardwareStatus::kOk || hardware_->read(arm_) != HardwareStatus::kOk) {
+    ++hardware_faults_;
+    state_ = msg::STATE_FAULT;
+  }
   publish_state();
 }
 
 void FollowerNode::active_faults(std::vector<uint32_t>& faults) const {
+  if (hardware_faults_ > 0) faults.push_back(msg::FAULT_HARDWARE);
   if (state_ == msg::STATE_SAFE_HOLD) faults.push_back(msg::FAULT_STALE_INPUT);
   if (validator_.rejected() > 0) faults.push_back(msg::FAULT_COMMAND_REJECTED);
 }
@@ -125,6 +165,8 @@ void FollowerNode::fill_report(runtime::NodeReport& report) const {
   report.add(wrench_pub_);
   report.counters.emplace_back("watchdog_trips", static_cast<double>(watchdog_trips_));
   report.counters.emplace_back("torque_saturations", static_cast<double>(torque_saturations_));
+  report.counters.emplace_back("hardware_faults", static_cast<double>(hardware_faults_));
+  report.counters.emplace_back("peak_external_force_n", peak_external_force_n_);
   for (size_t i = 0; i < static_cast<size_t>(CommandIssue::kCount); ++i) {
     const auto issue = static_cast<CommandIssue>(i);
     report.counters.emplace_back(to_string(issue), static_cast<double>(validator_.count(issue)));

@@ -17,6 +17,7 @@ constexpr size_t kJoints = 7;
 
 FollowerConfig config() {
   FollowerConfig c;
+  c.joints = kJoints;
   c.model.joints = kJoints;
   c.limits.q_min_rad.fill(-2.8);
   c.limits.q_max_rad.fill(2.8);

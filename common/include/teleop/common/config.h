@@ -55,6 +55,9 @@ class ConfigNode {
   int64_t get_int(const std::string& key, Range range, int64_t fallback) const;
   double get_double(const std::string& key, Range range, double fallback) const;
 
+  /// Required path of an existing file, resolved relative to this config file's folder.
+  std::string get_path(const std::string& key) const;
+
   /// Required string that must be one of `choices`.
   std::string get_choice(const std::string& key, const std::vector<std::string>& choices) const;
   std::string get_choice(const std::string& key, const std::vector<std::string>& choices,

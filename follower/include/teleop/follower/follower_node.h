@@ -7,6 +7,8 @@
 #include "teleop/common/config.h"
 #include "teleop/common/joint_model.h"
 #include "teleop/follower/command_validator.h"
+#include "teleop/follower/mujoco_hardware.h"
+#include "teleop/follower/robot_hardware.h"
 #include "teleop/runtime/node_runner.h"
 #include "teleop/transport/publication.h"
 #include "teleop/transport/subscription.h"
@@ -14,7 +16,11 @@
 namespace teleop::follower {
 
 struct FollowerConfig {
+  size_t joints = 7;
+  /// Which robot: the simple joint model, or a MuJoCo simulation of the arm.
+  enum class Hardware { kSimple, kMujoco } hardware = Hardware::kSimple;
   JointModelParams model;
+  MujocoHardwareConfig mujoco;
   JointVector home_rad{};
   JointLimits limits;
   /// No valid command for this long: hold the current pose (watchdog).
@@ -45,8 +51,8 @@ class FollowerNode final : public runtime::NodeLogic {
   void publish_state();
 
   FollowerConfig config_;
-  double period_s_;
-  JointModel model_;
+  std::unique_ptr<RobotHardware> hardware_;
+  ArmState arm_{};
   CommandValidator validator_;
   transport::Subscription<msg::JointCommand> command_;
   transport::Publication<msg::JointState> state_pub_;
@@ -58,6 +64,8 @@ class FollowerNode final : public runtime::NodeLogic {
   JointVector tau_nm_{};
   uint64_t watchdog_trips_ = 0;
   uint64_t torque_saturations_ = 0;
+  uint64_t hardware_faults_ = 0;
+  double peak_external_force_n_ = 0.0;
 };
 
 }  // namespace teleop::follower

@@ -1,0 +1,52 @@
+#pragma once
+// RobotHardware on a MuJoCo simulation of the arm (config/models): each write() applies the
+// torques plus gravity compensation and advances the simulation by one control period.
+
+#include <string>
+
+#include "teleop/follower/robot_hardware.h"
+#include "teleop/sim/mujoco_model.h"
+
+namespace teleop::follower {
+
+struct MujocoHardwareConfig {
+  /// MJCF file of the arm (and its scene).
+  std::string model_path;
+  /// Keyframe to start from ("" = the model's default state).
+  std::string keyframe;
+  /// Control period; the model's timestep must divide it.
+  double period_s = 0.001;
+};
+
+class MujocoHardware final : public RobotHardware {
+ public:
+  /// Loads the model (throws std::runtime_error naming the file); the arm is the model's hinge
+  /// joints driven by its motor actuators, in actuator order.
+  explicit MujocoHardware(const MujocoHardwareConfig& config);
+
+  size_t joints() const override { return joints_; }
+  [[nodiscard]] HardwareStatus read(ArmState& state) override;
+  [[nodiscard]] HardwareStatus write(const JointVector& tau_nm) override;
+  const char* name() const override { return name_.c_str(); }
+
+  /// The simulation, for tests and the twin (not for the control loop).
+  sim::MujocoModel& simulation() { return sim_; }
+
+ private:
+  void compute_gravity();
+  void compute_external_wrench(ArmState& state) const;
+
+  sim::MujocoModel sim_;
+  // a second data for gravity: the same pose at rest, so the simulation itself is not disturbed
+  std::unique_ptr<mjData, void (*)(mjData*)> rest_;
+  std::string name_;
+  size_t joints_ = 0;
+  int substeps_ = 1;
+  JointVector gravity_nm_{};
+  std::array<int, kMaxJoints> dof_{};  // qvel/qfrc index of each arm joint
+  std::array<int, kMaxJoints> qpos_{};
+  std::array<int, kMaxJoints> actuator_{};
+  int ee_body_ = -1;
+};
+
+}  // namespace teleop::follower

@@ -1,0 +1,109 @@
+#include "teleop/follower/mujoco_hardware.h"
+
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+#include <vector>
+
+namespace teleop::follower {
+namespace {
+
+void delete_data(mjData* d) { mj_deleteData(d); }
+
+}  // namespace
+
+MujocoHardware::MujocoHardware(const MujocoHardwareConfig& config)
+    : sim_(sim::MujocoModel::load(config.model_path)), rest_(nullptr, delete_data) {
+  const mjModel* m = sim_.model();
+  if (!config.keyframe.empty()) sim_.reset(config.keyframe);
+  rest_.reset(mj_makeData(m));
+  name_ = "mujoco:" + std::filesystem::path(config.model_path).filename().string();
+
+  // the arm: hinge joints driven by actuators, in actuator order
+  for (int a = 0; a < m->nu; ++a) {
+    const int joint = m->actuator_trnid[2 * a];
+    if (m->actuator_trntype[a] != mjTRN_JOINT || m->jnt_type[joint] != mjJNT_HINGE) continue;
+    if (joints_ == kMaxJoints) throw std::runtime_error(config.model_path + ": more than 32 actuated joints");
+    dof_[joints_] = m->jnt_dofadr[joint];
+    qpos_[joints_] = m->jnt_qposadr[joint];
+    actuator_[joints_] = a;
+    ++joints_;
+  }
+  if (joints_ == 0) throw std::runtime_error(config.model_path + ": no actuated hinge joint");
+
+  const double steps = config.period_s / m->opt.timestep;
+  substeps_ = static_cast<int>(std::lround(steps));
+  if (substeps_ < 1 || std::abs(steps - substeps_) > 1e-6) {
+    throw std::runtime_error(config.model_path + ": timestep " + std::to_string(m->opt.timestep) +
+                             " s does not divide the control period " + std::to_string(config.period_s) + " s");
+  }
+  const int site = mj_name2id(m, mjOBJ_SITE, "ee_site");
+  ee_body_ = site >= 0 ? m->site_bodyid[site] : m->jnt_bodyid[m->actuator_trnid[2 * actuator_[joints_ - 1]]];
+  mj_forward(m, sim_.data());
+}
+
+void MujocoHardware::compute_gravity() {
+  const mjModel* m = sim_.model();
+  // the same pose at rest: the bias forces are then gravity alone
+  mju_copy(rest_->qpos, sim_.data()->qpos, m->nq);
+  mju_zero(rest_->qvel, m->nv);
+  mj_kinematics(m, rest_.get());
+  mj_comPos(m, rest_.get());
+  mj_rne(m, rest_.get(), 0, rest_->qfrc_bias);
+  for (size_t i = 0; i < joints_; ++i) gravity_nm_[i] = rest_->qfrc_bias[dof_[i]];
+}
+
+HardwareStatus MujocoHardware::write(const JointVector& tau_nm) {
+  const mjModel* m = sim_.model();
+  mjData* d = sim_.data();
+  compute_gravity();
+  for (size_t i = 0; i < joints_; ++i) {
+    if (!std::isfinite(tau_nm[i])) return HardwareStatus::kFault;
+    d->ctrl[actuator_[i]] = tau_nm[i] + gravity_nm_[i];
+  }
+  for (int s = 0; s < substeps_; ++s) mj_step(m, d);
+  return HardwareStatus::kOk;
+}
+
+void MujocoHardware::compute_external_wrench(ArmState& state) const {
+  const mjModel* m = sim_.model();
+  const mjData* d = sim_.data();
+  state.force_ext_n = {0, 0, 0};
+  state.torque_ext_nm = {0, 0, 0};
+  const mjtNum* ee = d->xpos + 3 * ee_body_;
+  for (int c = 0; c < d->ncon; ++c) {
+    const mjContact& con = d->contact[c];
+    const int b1 = m->geom_bodyid[con.geom1];
+    const int b2 = m->geom_bodyid[con.geom2];
+    // contacts of the end effector's body with anything else
+    const double sign = b2 == ee_body_ ? 1.0 : (b1 == ee_body_ ? -1.0 : 0.0);
+    if (sign == 0.0 || b1 == b2) continue;
+    mjtNum local[6];
+    mj_contactForce(m, d, c, local);
+    // contact frame rows are its axes in world coordinates; the force acts on geom2 along them
+    mjtNum world[3];
+    mju_mulMatTVec(world, con.frame, local, 3, 3);
+    const mjtNum r[3] = {con.pos[0] - ee[0], con.pos[1] - ee[1], con.pos[2] - ee[2]};
+    mjtNum moment[3];
+    mju_cross(moment, r, world);
+    for (int k = 0; k < 3; ++k) {
+      state.force_ext_n[static_cast<size_t>(k)] += sign * world[k];
+      state.torque_ext_nm[static_cast<size_t>(k)] += sign * moment[k];
+    }
+  }
+}
+
+HardwareStatus MujocoHardware::read(ArmState& state) {
+  const mjData* d = sim_.data();
+  for (size_t i = 0; i < joints_; ++i) {
+    state.q_rad[i] = d->qpos[qpos_[i]];
+    state.dq_radps[i] = d->qvel[dof_[i]];
+    state.tau_measured_nm[i] = d->actuator_force[actuator_[i]];
+    // contacts and joint limits acting on the joint, from the last step
+    state.tau_ext_nm[i] = d->qfrc_constraint[dof_[i]];
+  }
+  compute_external_wrench(state);
+  return HardwareStatus::kOk;
+}
+
+}  // namespace teleop::follower

@@ -1,0 +1,91 @@
+#include "teleop/follower/mujoco_hardware.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "allocation_counter.h"
+#include "test_helpers.h"
+
+namespace teleop::follower {
+namespace {
+
+MujocoHardwareConfig wall_scene() {
+  MujocoHardwareConfig c;
+  c.model_path = std::string(TELEOP_SOURCE_DIR) + "/config/models/scene_wall.xml";
+  c.keyframe = "facing_wall";
+  c.period_s = 0.001;
+  return c;
+}
+
+TEST(MujocoHardware, DrivesTheSevenArmJoints) {
+  MujocoHardware hw(wall_scene());
+  EXPECT_EQ(hw.joints(), 7u);
+  EXPECT_STREQ(hw.name(), "mujoco:scene_wall.xml");
+  ArmState s;
+  ASSERT_EQ(hw.read(s), HardwareStatus::kOk);
+  EXPECT_NEAR(s.q_rad[1], -0.2438, 1e-9) << "starts in the keyframe";
+}
+
+TEST(MujocoHardware, HoldsItsPoseWithZeroCommandedTorqueBecauseItCompensatesGravity) {
+  MujocoHardware hw(wall_scene());
+  ArmState start, s;
+  ASSERT_EQ(hw.read(start), HardwareStatus::kOk);
+  const JointVector zero{};
+  for (int i = 0; i < 2000; ++i) ASSERT_EQ(hw.write(zero), HardwareStatus::kOk);  // 2 s
+  ASSERT_EQ(hw.read(s), HardwareStatus::kOk);
+  for (size_t j = 0; j < 7; ++j) EXPECT_NEAR(s.q_rad[j], start.q_rad[j], 5e-3) << "joint " << j;
+}
+
+TEST(MujocoHardware, PushingIntoTheWallGivesAForceOutOfTheWallThatGrowsWithThePush) {
+  // joint 2 (shoulder) forward moves the flange towards the wall at +x
+  auto push = [](double torque_nm) {
+    MujocoHardware hw(wall_scene());
+    JointVector tau{};
+    tau[1] = torque_nm;
+    ArmState s;
+    for (int i = 0; i < 1500; ++i) {
+      EXPECT_EQ(hw.write(tau), HardwareStatus::kOk);
+    }
+    EXPECT_EQ(hw.read(s), HardwareStatus::kOk);
+    return s;
+  };
+  const ArmState soft = push(10.0);
+  const ArmState hard = push(30.0);
+  EXPECT_LT(soft.force_ext_n[0], -1.0) << "the wall pushes back along -x";
+  EXPECT_LT(hard.force_ext_n[0], soft.force_ext_n[0]) << "a harder push, a larger reaction";
+  EXPECT_GT(std::abs(hard.tau_ext_nm[1]), 1.0) << "the contact shows in the joint torques";
+}
+
+TEST(MujocoHardware, RejectsANonFiniteTorque) {
+  MujocoHardware hw(wall_scene());
+  JointVector tau{};
+  tau[3] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(hw.write(tau), HardwareStatus::kFault);
+}
+
+TEST(MujocoHardware, RefusesAPeriodTheTimestepDoesNotDivide) {
+  MujocoHardwareConfig c = wall_scene();
+  c.period_s = 0.0015;
+  const std::string message = test::error_of<std::runtime_error>([&] { MujocoHardware hw(c); });
+  EXPECT_NE(message.find("scene_wall.xml"), std::string::npos) << message;
+  EXPECT_NE(message.find("does not divide"), std::string::npos) << message;
+}
+
+TEST(MujocoHardware, ReadAndWriteDoNotAllocate) {
+  MujocoHardware hw(wall_scene());
+  ArmState s;
+  JointVector tau{};
+  tau[1] = 20.0;  // with contacts, the costlier path
+  for (int i = 0; i < 100; ++i) ASSERT_EQ(hw.write(tau), HardwareStatus::kOk);
+  test::ScopedAllocationCounter counter;
+  for (int i = 0; i < 1000; ++i) {
+    ASSERT_EQ(hw.write(tau), HardwareStatus::kOk);
+    ASSERT_EQ(hw.read(s), HardwareStatus::kOk);
+  }
+  EXPECT_EQ(counter.count(), 0u);
+}
+
+}  // namespace
+}  // namespace teleop::follower
