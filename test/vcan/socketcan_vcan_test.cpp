@@ -180,6 +180,36 @@ TEST(SocketCanVcan, CansendFramesReachOurBus) {
   EXPECT_EQ(nmt->node, 5);
 }
 
+// vcan has no controller, but error frames written to it (cansend with CAN_ERR_FLAG in the id)
+// reach every socket whose CAN_RAW_ERR_FILTER matches, as a driver's would
+TEST(SocketCanVcan, ErrorFramesSetTheBusState) {
+  SocketCanBus bus(iface());
+  auto inject = [&](const std::string& text, CanBusState expected) {
+    const std::string cmd = "cansend " + iface() + " " + text;
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    CanFrame got;
+    const auto end = std::chrono::steady_clock::now() + 2s;
+    bool seen = false;
+    while (!seen && std::chrono::steady_clock::now() < end) {
+      seen = bus.receive(got, 50ms) == CanStatus::kOk && got.error();
+    }
+    ASSERT_TRUE(seen) << cmd;
+    EXPECT_EQ(bus.state(), expected) << cmd;
+  };
+  inject("20000004#0004000000000000", CanBusState::kErrorWarning);  // controller: rx warning
+  inject("20000004#0010000000000000", CanBusState::kErrorPassive);  // controller: rx passive
+  inject("20000040#0000000000000000", CanBusState::kBusOff);        // bus-off
+  EXPECT_EQ(bus.send(frame(0x123, {1})), CanStatus::kBusOff);
+  inject("20000100#0000000000000000", CanBusState::kErrorActive);   // restarted
+  EXPECT_EQ(bus.send(frame(0x123, {1})), CanStatus::kOk);
+  const auto s = bus.socket_stats();
+  EXPECT_EQ(s.bus.error_frames, 4u);
+  EXPECT_EQ(s.controller_problems, 2u);
+  EXPECT_EQ(s.bus_off_events, 1u);
+  EXPECT_EQ(s.restarts, 1u);
+  EXPECT_EQ(s.bus.tx_dropped, 1u);
+}
+
 TEST(SocketCanVcan, CandumpSeesOurSyncFrames) {
   SocketCanBus bus(iface());
   const std::string cmd = "timeout 10 candump -L -n 3 " + iface() + ",080:7FF";
