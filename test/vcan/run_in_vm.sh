@@ -9,7 +9,7 @@
 # "TELEOP_VCAN_RESULT PASS|FAIL rc=N" on the serial console and powers off. This script exits
 # with COMMAND's status; with 1 when anything is missing (never skips) or no result came back
 # within the timeout. The kernel package and the base initramfs are cached under --cache and
-# rebuilt only when their inputs change.
+# rebuilt only when their inputs change. TELEOP_QEMU overrides the qemu binary.
 set -euo pipefail
 
 cache=""
@@ -54,7 +54,8 @@ fi
 [ -n "$cache" ] || cache="${TMPDIR:-/tmp}/teleop-vcan-vm"
 mkdir -p "$cache"
 cache=$(cd "$cache" && pwd)
-command -v qemu-system-x86_64 >/dev/null || die "qemu-system-x86_64 not found (scripts/setup.sh installs qemu-system-x86)"
+qemu=${TELEOP_QEMU:-qemu-system-x86_64}
+command -v "$qemu" >/dev/null || die "$qemu not found (scripts/setup.sh installs qemu-system-x86)"
 busybox=$(command -v busybox || true)
 [ -n "$busybox" ] || die "busybox not found (busybox-static)"
 file -L "$busybox" 2>/dev/null | grep -q "statically linked" || ldd "$busybox" 2>&1 | grep -q "not a dynamic" ||
@@ -147,7 +148,7 @@ cat "$base" "$work/payload.cpio.gz" > "$work/initrd.gz"
 echo "run_in_vm: booting $(basename "$vmlinuz") in qemu (timeout ${timeout_s} s), initramfs ready after $(elapsed)"
 log="$work/console.log"
 set +e
-timeout --kill-after=10 "$timeout_s" qemu-system-x86_64 -m 512 -smp 2 -nographic -no-reboot \
+timeout --kill-after=10 "$timeout_s" "$qemu" -m 512 -smp 2 -nographic -no-reboot \
   -kernel "$vmlinuz" -initrd "$work/initrd.gz" -append "console=ttyS0 quiet panic=-1" \
   < /dev/null 2>&1 | tee "$log"
 qrc=${PIPESTATUS[0]}
