@@ -77,20 +77,25 @@ if [ -z "$deb" ]; then
     die "cannot download kernel package $kpkg (apt-get download $kpkg)"
   deb=$(ls "$cache"/"${kpkg}"_*.deb | head -1)
 fi
+# keep only what the VM needs (the whole package extracts to ~400 MB)
 kdir="$cache/kernel-$(basename "$deb" .deb)"
-if [ ! -f "$kdir/.done" ]; then
-  rm -rf "$kdir"; mkdir -p "$kdir"
-  dpkg-deb -x "$deb" "$kdir" || die "cannot extract $deb"
+kmods=(net/can/can.ko net/can/can-raw.ko drivers/net/can/dev/can-dev.ko drivers/net/can/vcan.ko)
+if [ ! -f "$kdir/.done" ] || [ ! -f "$kdir/vmlinuz" ]; then
+  rm -rf "$kdir" "$kdir.x"; mkdir -p "$kdir/modules" "$kdir.x"
+  dpkg-deb -x "$deb" "$kdir.x" || die "cannot extract $deb"
+  cp "$(ls "$kdir.x"/boot/vmlinuz-* | head -1)" "$kdir/vmlinuz" || die "no vmlinuz in $deb"
+  moddir=$(ls -d "$kdir.x"/lib/modules/*/ | head -1)
+  n=0
+  for m in "${kmods[@]}"; do
+    f=$(ls "$moddir/kernel/$m"* 2>/dev/null | head -1 || true)
+    [ -n "$f" ] || { rm -rf "$kdir" "$kdir.x"; die "module $m missing in $deb"; }
+    n=$((n + 1))
+    cp "$f" "$kdir/modules/$n-$(basename "$f")"  # numbered: insmod order can, can-raw, can-dev, vcan
+  done
+  rm -rf "$kdir.x"
   touch "$kdir/.done"
 fi
-vmlinuz=$(ls "$kdir"/boot/vmlinuz-* | head -1)
-moddir=$(ls -d "$kdir"/lib/modules/*/ | head -1)
-mods=()
-for m in net/can/can.ko net/can/can-raw.ko drivers/net/can/dev/can-dev.ko drivers/net/can/vcan.ko; do
-  f=$(ls "$moddir/kernel/$m"* 2>/dev/null | head -1 || true)
-  [ -n "$f" ] || die "module $m missing in $deb"
-  mods+=("$f")
-done
+vmlinuz="$kdir/vmlinuz"
 
 # copies a binary and its ldd libraries into root $1 (binary into $3)
 add_elf() {
@@ -118,8 +123,7 @@ if [ ! -f "$base" ]; then
   mkdir -p "$root"/{bin,sbin,proc,sys,dev,tmp,etc,lib/modules,opt/teleop/bin}
   cp "$busybox" "$root/bin/busybox"
   cp "$init_src" "$root/init"; chmod 755 "$root/init"
-  n=0
-  for f in "${mods[@]}"; do n=$((n + 1)); cp "$f" "$root/lib/modules/$n-$(basename "$f")"; done
+  cp "$kdir"/modules/*.ko "$root/lib/modules/"
   add_elf "$root" "$ipbin" /opt/teleop/bin/ip
   add_elf "$root" "$candump" /opt/teleop/bin/candump
   add_elf "$root" "$cansend" /opt/teleop/bin/cansend
@@ -145,7 +149,7 @@ done
 (cd "$work/root" && find . | cpio -o -H newc --quiet | gzip -1) > "$work/payload.cpio.gz"
 cat "$base" "$work/payload.cpio.gz" > "$work/initrd.gz"
 
-echo "run_in_vm: booting $(basename "$vmlinuz") in qemu (timeout ${timeout_s} s), initramfs ready after $(elapsed)"
+echo "run_in_vm: booting $kpkg in qemu (timeout ${timeout_s} s), initramfs ready after $(elapsed)"
 log="$work/console.log"
 set +e
 timeout --kill-after=10 "$timeout_s" "$qemu" -m 512 -smp 2 -nographic -no-reboot \
