@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <set>
 #include <string>
 #include <thread>
 
@@ -269,6 +270,48 @@ TEST(SocketCanVcan, HandEmulatorProcessAnswersEveryNode) {
   int status = 0;
   ::waitpid(pid, &status, 0);
   EXPECT_EQ(answered, 9);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "emulator status " << status;
+}
+
+// can-utils against the emulator process: candump sees the nine heartbeats, an NMT start for
+// all nodes sent with cansend turns every heartbeat to operational (0x05)
+TEST(SocketCanVcan, CanUtilsTalkToTheHandEmulator) {
+  const char* env = std::getenv("TELEOP_HAND_EMULATOR");
+  const std::string exe = env != nullptr ? env : "teleop_hand_emulator";
+  SocketCanBus master(iface());
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::execlp(exe.c_str(), exe.c_str(), "--interface", iface().c_str(), "--duration", "30",
+             static_cast<char*>(nullptr));
+    std::_Exit(127);
+  }
+  const std::string dump = "timeout 10 candump -L -n 27 " + iface() + ",700:780";
+  FILE* pipe = ::popen(dump.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::set<std::string> ids;
+  char line[256];
+  while (std::fgets(line, sizeof(line), pipe) != nullptr) {
+    const std::string l = line;
+    const auto p = l.find(iface() + " 7");
+    if (p != std::string::npos) ids.insert(l.substr(p + iface().size() + 1, 3));
+  }
+  EXPECT_EQ(::pclose(pipe), 0);
+  EXPECT_EQ(ids.size(), 9u) << "heartbeat ids seen by candump: " << ids.size();
+  ASSERT_EQ(std::system(("cansend " + iface() + " 000#0100").c_str()), 0);
+  std::set<uint32_t> operational;
+  const auto end = std::chrono::steady_clock::now() + 3s;
+  while (operational.size() < 9 && std::chrono::steady_clock::now() < end) {
+    CanFrame got;
+    if (master.receive(got, 50ms) == CanStatus::kOk && got.id > 0x700 && got.id <= 0x709 && got.dlc == 1 &&
+        got.data[0] == 0x05) {
+      operational.insert(got.id);
+    }
+  }
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  EXPECT_EQ(operational.size(), 9u);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "emulator status " << status;
 }
 
