@@ -26,6 +26,7 @@ JointModelParams read_joint_model(const ConfigNode& section, size_t joints) {
   p.joints = joints;
   p.inertia_kgm2 = section.get_double("inertia_kgm2", Range{1e-4, 100}, p.inertia_kgm2);
   p.viscous_nms_per_rad = section.get_double("viscous_nms_per_rad", Range{0, 1000}, p.viscous_nms_per_rad);
+  p.wall_joint = static_cast<size_t>(section.get_int("wall_joint", Range{0, static_cast<double>(joints) - 1}, 0));
   p.wall_q_rad = section.get_double("wall_q_rad", Range{-10, 1e9}, p.wall_q_rad);
   p.wall_stiffness_nm_per_rad = section.get_double("wall_stiffness_nm_per_rad", Range{0, 1e6}, p.wall_stiffness_nm_per_rad);
   return p;

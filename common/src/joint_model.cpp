@@ -7,6 +7,7 @@ namespace teleop {
 JointModel::JointModel(const JointModelParams& params) : params_(params) {
   if (params.joints == 0 || params.joints > kMaxJoints) throw std::invalid_argument("JointModel: bad joint count");
   if (params.inertia_kgm2 <= 0) throw std::invalid_argument("JointModel: inertia must be positive");
+  if (params.wall_joint >= params.joints) throw std::invalid_argument("JointModel: wall joint out of range");
 }
 
 void JointModel::reset(const JointVector& q_rad) {
@@ -17,9 +18,10 @@ void JointModel::reset(const JointVector& q_rad) {
 
 void JointModel::update_contact() {
   contact_.fill(0.0);
-  const double penetration = q_[0] - params_.wall_q_rad;
+  const size_t j = params_.wall_joint;
+  const double penetration = q_[j] - params_.wall_q_rad;
   // the wall only pushes, and only while penetrated
-  if (penetration > 0) contact_[0] = -params_.wall_stiffness_nm_per_rad * penetration;
+  if (penetration > 0) contact_[j] = -params_.wall_stiffness_nm_per_rad * penetration;
 }
 
 void JointModel::step(const JointVector& tau_nm, double dt_s) {

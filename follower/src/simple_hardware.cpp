@@ -13,9 +13,11 @@ HardwareStatus SimpleHardware::read(ArmState& state) {
   state.dq_radps = model_.dq();
   state.tau_measured_nm = applied_;
   state.tau_ext_nm = model_.contact_torque();
-  // the wall's torque on joint 0 seen as a force at the tool, normal to the lever
-  state.force_ext_n = {model_.contact_torque()[0] / lever_m_, 0.0, 0.0};
-  state.torque_ext_nm = {0.0, 0.0, model_.contact_torque()[0]};
+  // the wall's torque seen as a force at the tool, normal to the lever
+  double wall_torque = 0.0;
+  for (size_t i = 0; i < model_.joints(); ++i) wall_torque += model_.contact_torque()[i];
+  state.force_ext_n = {wall_torque / lever_m_, 0.0, 0.0};
+  state.torque_ext_nm = {0.0, 0.0, wall_torque};
   return HardwareStatus::kOk;
 }
 

@@ -12,7 +12,8 @@ ScriptedLeaderConfig ScriptedLeader::parse_config(const ConfigNode& root) {
   ScriptedLeaderConfig c;
   c.joints = read_joint_count(s);
   c.home_rad = read_joint_list(s, "home_rad", c.joints, Range{-2 * M_PI, 2 * M_PI}, 0.0);
-  c.amplitude_rad = s.get_double("amplitude_rad", Range{0, M_PI}, c.amplitude_rad);
+  const double amplitude = s.get_double("amplitude_rad", Range{0, M_PI}, 0.3);
+  c.amplitude_rad = read_joint_list(s, "amplitudes_rad", c.joints, Range{0, M_PI}, amplitude);
   c.frequency_hz = s.get_double("frequency_hz", Range{0, 50}, c.frequency_hz);
   c.stiffness_nm_per_rad = s.get_double("stiffness_nm_per_rad", Range{0, 1e5}, c.stiffness_nm_per_rad);
   c.damping_nms_per_rad = s.get_double("damping_nms_per_rad", Range{0, 1e4}, c.damping_nms_per_rad);
@@ -48,8 +49,8 @@ void ScriptedLeader::operator_motion(double t_s) {
   for (size_t i = 0; i < config_.joints; ++i) {
     // each joint a little out of phase, so that the motion is not degenerate
     const double phase = 0.4 * static_cast<double>(i);
-    q_des_[i] = config_.home_rad[i] + config_.amplitude_rad * std::sin(w * t_s + phase);
-    dq_des_[i] = config_.amplitude_rad * w * std::cos(w * t_s + phase);
+    q_des_[i] = config_.home_rad[i] + config_.amplitude_rad[i] * std::sin(w * t_s + phase);
+    dq_des_[i] = config_.amplitude_rad[i] * w * std::cos(w * t_s + phase);
   }
 }
 

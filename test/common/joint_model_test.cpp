@@ -167,3 +167,25 @@ TEST(JointModel, VelocityDecaysExponentiallyUnderViscousFriction) {
 
 }  // namespace
 }  // namespace teleop
+
+namespace teleop {
+namespace {
+
+TEST(JointModel, PutsTheWallOnTheConfiguredJointOnly) {
+  JointModelParams p;
+  p.joints = 3;
+  p.wall_joint = 2;
+  p.wall_q_rad = 0.1;
+  JointModel m(p);
+  JointVector q{};
+  q[0] = 0.5;  // past the wall angle, but joint 0 has no wall
+  q[2] = 0.15;
+  m.reset(q);
+  EXPECT_EQ(m.contact_torque()[0], 0.0);
+  EXPECT_NEAR(m.contact_torque()[2], -p.wall_stiffness_nm_per_rad * 0.05, 1e-9);
+  p.wall_joint = 3;
+  EXPECT_THROW(JointModel{p}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace teleop

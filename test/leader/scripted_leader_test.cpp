@@ -17,7 +17,7 @@ constexpr size_t kJoints = 7;
 ScriptedLeaderConfig config() {
   ScriptedLeaderConfig c;
   c.joints = kJoints;
-  c.amplitude_rad = 0.3;
+  c.amplitude_rad.fill(0.3);
   c.frequency_hz = 0.5;
   c.peer_timeout_s = 0.05;
   return c;

@@ -1,6 +1,6 @@
 #pragma once
 // A simple simulated joint space: independent joints with inertia and viscous friction, and a
-// stiff virtual wall on joint 0. It stands in for a robot until the MuJoCo models take over,
+// stiff virtual wall on one joint. It stands in for a robot until the MuJoCo models take over,
 // and gives the nodes real dynamics (and a real contact torque) to exchange.
 
 #include <array>
@@ -15,7 +15,8 @@ struct JointModelParams {
   size_t joints = 7;
   double inertia_kgm2 = 0.2;
   double viscous_nms_per_rad = 0.5;
-  /// Joint 0 meets a wall at this angle (from below); +inf disables the wall.
+  /// Joint `wall_joint` meets a wall at this angle (from below); a huge value disables it.
+  size_t wall_joint = 0;
   double wall_q_rad = 1e9;
   double wall_stiffness_nm_per_rad = 2000.0;
 };
@@ -34,7 +35,7 @@ class JointModel {
   size_t joints() const { return params_.joints; }
   const JointVector& q() const { return q_; }
   const JointVector& dq() const { return dq_; }
-  /// Torque the wall exerts on each joint at the current state (<= 0 on joint 0, else 0).
+  /// Torque the wall exerts on each joint at the current state (<= 0 on the wall joint, else 0).
   const JointVector& contact_torque() const { return contact_; }
 
  private:

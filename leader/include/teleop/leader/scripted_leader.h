@@ -17,7 +17,8 @@ struct ScriptedLeaderConfig {
   size_t joints = 7;
   /// Centre of the motion per joint [rad] (the home pose).
   JointVector home_rad{};
-  double amplitude_rad = 0.3;
+  /// Amplitude of each joint's sinusoid [rad] (`amplitudes_rad`, or `amplitude_rad` for all).
+  JointVector amplitude_rad{};
   double frequency_hz = 0.5;
   /// Joint impedance commanded to the follower.
   double stiffness_nm_per_rad = 200.0;
