@@ -30,7 +30,7 @@
 // Quick stop brakes with the position loop and holds (like quick stop option code 6): enable
 // operation resumes (transition 16), disable voltage leaves (12). Following error: the link
 // farther than 0x6065 from the reference for 0x6066 ms -> fault, EMCY 0x8611. The NMT state
-// does not act on the CiA 402 state (no communication-error reaction, 0x6007 not implemented);
+// does not act on the CiA 402 state (no communication-error reaction: object 0x6007 is not emulated);
 // a reset keeps the link where it is (an absolute encoder). Torque actual (0x6077) equals
 // current actual (0x6078): a DC motor, rated torque = k_t * rated current.
 
