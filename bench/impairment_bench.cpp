@@ -55,7 +55,7 @@ LinkProfile profile_of(const std::string& name, const LinkPhase& phase) {
   return p;
 }
 
-void presize(msg::JointState& s) { transport::presize(7, s.q_rad(), s.dq_radps(), s.tau_measured_nm(), s.tau_ext_nm()); }
+void presize(msg::JointState& s) { transport::presize_joint_state(s, 7); }
 
 bool wait_matched(const std::function<bool()>& matched) {
   for (int i = 0; i < 10'000 && !matched(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));

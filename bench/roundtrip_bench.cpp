@@ -146,7 +146,7 @@ JointState make_sample(const std::string& source) {
   s.header().source(source);
   s.robot("panda");
   s.arm("right");
-  transport::presize(kJoints, s.q_rad(), s.dq_radps(), s.tau_measured_nm(), s.tau_ext_nm());
+  transport::presize_joint_state(s, kJoints);
   for (size_t i = 0; i < kJoints; ++i) {
     const double x = static_cast<double>(i + 1);
     s.q_rad()[i] = 0.1 * x;

@@ -71,7 +71,7 @@ FollowerNode::FollowerNode(const FollowerConfig& config, runtime::NodeContext& c
   auto& st = state_pub_.sample();
   st.robot(hardware_->name());
   st.arm("single");
-  transport::presize(config.joints, st.q_rad(), st.dq_radps(), st.tau_measured_nm(), st.tau_ext_nm());
+  transport::presize_joint_state(st, config.joints);
   wrench_pub_.sample().frame("base");
   // until a command arrives, hold the pose the robot is in
   if (hardware_->read(arm_) != HardwareStatus::kOk) throw std::runtime_error("the robot hardware cannot be read");

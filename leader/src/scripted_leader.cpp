@@ -40,7 +40,7 @@ ScriptedLeader::ScriptedLeader(const ScriptedLeaderConfig& config, runtime::Node
   auto& st = device_state_.sample();
   st.robot("leader_device");
   st.arm("single");
-  transport::presize(n, st.q_rad(), st.dq_radps(), st.tau_measured_nm(), st.tau_ext_nm());
+  transport::presize_joint_state(st, n);
   q_des_ = config.home_rad;
 }
 

@@ -29,8 +29,7 @@ struct FollowerPeer {
   transport::Publication<msg::JointState> state;
   explicit FollowerPeer(transport::Participant& p)
       : command(p, transport::topics::kLeaderCommand), state(p, transport::topics::kFollowerState, "follower") {
-    transport::presize(kJoints, state.sample().q_rad(), state.sample().dq_radps(), state.sample().tau_measured_nm(),
-                       state.sample().tau_ext_nm());
+    transport::presize_joint_state(state.sample(), kJoints);
   }
 };
 

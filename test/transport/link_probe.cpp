@@ -68,8 +68,7 @@ bool wait_until(const std::function<bool()>& condition, double timeout_s) {
 int publish(const Options& o) {
   transport::Participant participant(participant_config(o));
   transport::Publication<msg::JointState> pub(participant, topic(o), o.name);
-  transport::presize(7, pub.sample().q_rad(), pub.sample().dq_radps(), pub.sample().tau_measured_nm(),
-                     pub.sample().tau_ext_nm());
+  transport::presize_joint_state(pub.sample(), 7);
   if (!wait_until([&] { return pub.matched() > 0; }, 20)) {
     std::fprintf(stderr, "probe %s: no subscriber matched within 20 s\n", o.name.c_str());
     return 1;

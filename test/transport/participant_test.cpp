@@ -93,7 +93,7 @@ bool wait_for(const std::function<bool()>& done, std::chrono::milliseconds timeo
 void fill(msg::JointState& s, int i) {
   s.robot("panda");
   s.arm(i % 2 ? "left" : "right");
-  presize(kJoints, s.q_rad(), s.dq_radps(), s.tau_measured_nm(), s.tau_ext_nm());
+  presize_joint_state(s, kJoints);
   for (size_t j = 0; j < kJoints; ++j) {
     s.q_rad()[j] = i + 0.01 * static_cast<double>(j);
     s.dq_radps()[j] = -i - 0.5 * static_cast<double>(j);

@@ -29,8 +29,7 @@ struct LeaderPeer {
   transport::Subscription<msg::JointTorque> feedback;
   explicit LeaderPeer(transport::Participant& p)
       : state(p, transport::topics::kLeaderState, "leader"), feedback(p, transport::topics::kTwinFeedback) {
-    transport::presize(kJoints, state.sample().q_rad(), state.sample().dq_radps(), state.sample().tau_measured_nm(),
-                       state.sample().tau_ext_nm());
+    transport::presize_joint_state(state.sample(), kJoints);
   }
 };
 

@@ -35,7 +35,7 @@ TwinNode::TwinNode(const TwinConfig& config, runtime::NodeContext& context)
   auto& st = state_pub_.sample();
   st.robot("twin");
   st.arm("single");
-  transport::presize(n, st.q_rad(), st.dq_radps(), st.tau_measured_nm(), st.tau_ext_nm());
+  transport::presize_joint_state(st, n);
   feedback_pub_.sample().robot("leader_device");
   feedback_pub_.sample().arm("single");
   transport::presize(n, feedback_pub_.sample().tau_nm());

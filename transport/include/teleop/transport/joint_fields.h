@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <vector>
 
+#include <teleop/msg/arm.h>
+
 #include "teleop/common/joint_model.h"
 
 namespace teleop::transport {
@@ -26,6 +28,11 @@ inline void copy_joints(const JointVector& in, size_t n, std::vector<double>& ou
 template <typename... Seq>
 void presize(size_t n, Seq&... sequences) {
   (sequences.resize(n), ...);
+}
+
+/// Sizes the four joint sequences of a JointState to n joints (setup time).
+inline void presize_joint_state(msg::JointState& state, size_t n) {
+  presize(n, state.q_rad(), state.dq_radps(), state.tau_measured_nm(), state.tau_ext_nm());
 }
 
 }  // namespace teleop::transport
