@@ -20,6 +20,7 @@ namespace topics {
 
 // leader station -> follower robot: the operator's commanded motion
 inline constexpr TopicSpec<msg::JointCommand> kLeaderCommand{"teleop/leader/joint_command", QosPreset::kStream};
+inline constexpr TopicSpec<msg::CartesianCommand> kLeaderCartesian{"teleop/leader/cartesian_command", QosPreset::kStream};
 // leader device state (for the twin in model-mediated teleoperation)
 inline constexpr TopicSpec<msg::JointState> kLeaderState{"teleop/leader/joint_state", QosPreset::kStream};
 // follower robot -> everyone: measured state and estimated external wrench
@@ -28,6 +29,7 @@ inline constexpr TopicSpec<msg::WrenchStamped> kFollowerWrench{"teleop/follower/
 // twin -> leader: rendered constraint torque (haptic feedback) and the twin's own state
 inline constexpr TopicSpec<msg::JointTorque> kTwinFeedback{"teleop/twin/feedback_torque", QosPreset::kStream};
 inline constexpr TopicSpec<msg::JointState> kTwinState{"teleop/twin/joint_state", QosPreset::kStream};
+inline constexpr TopicSpec<msg::JointCommand> kTwinCommand{"teleop/twin/joint_command", QosPreset::kStream};
 // hand
 inline constexpr TopicSpec<msg::HandCommand> kHandCommand{"teleop/hand/command", QosPreset::kStream};
 inline constexpr TopicSpec<msg::HandState> kHandState{"teleop/hand/state", QosPreset::kStream};
