@@ -179,8 +179,10 @@ void FollowerNode::publish_state() {
 }
 
 void FollowerNode::cycle(const CycleTick& tick) {
-  take_commands(tick.now_ns);
-  run_watchdog(tick.now_ns);
+  // the watchdog counts control cycles (their deadlines): a cycle released late neither
+  // shortens nor stretches the timeout
+  take_commands(tick.deadline_ns);
+  run_watchdog(tick.deadline_ns);
   command_torque();
   // a robot that refuses a command or cannot be read is a fault: hold what we have, report it
   if (hardware_->write(command_nm_) != HardwareStatus::kOk || hardware_->read(arm_) != HardwareStatus::kOk) {
@@ -211,6 +213,7 @@ void FollowerNode::fill_report(runtime::NodeReport& report) const {
   counter("torque_saturations", static_cast<double>(limiter_.saturations()));
   counter("torque_rate_limited", static_cast<double>(limiter_.rate_limited()));
   counter("peak_torque_ratio", limiter_.peak_ratio());
+  counter("torque_step_max_nm", limiter_.largest_step_nm());
   counter("hardware_faults", static_cast<double>(hardware_faults_));
   counter("mode_changes", static_cast<double>(mode_changes_));
   counter("tracking_rmse_rad", joint_tracking_.rms());

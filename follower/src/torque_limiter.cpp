@@ -19,6 +19,7 @@ void TorqueLimiter::apply(JointVector& tau) {
     const double saturated = std::clamp(t, -max_torque_[i], max_torque_[i]);
     if (saturated != t) ++saturations_;
     tau[i] = saturated;
+    if (started_) largest_step_ = std::max(largest_step_, std::abs(saturated - last_[i]));
     last_[i] = saturated;
     peak_ratio_ = std::max(peak_ratio_, std::abs(saturated) / max_torque_[i]);
   }

@@ -164,10 +164,13 @@ TEST_F(FollowerNodeTest, RejectsACommandStampedLongAgo) {
   auto writer = harness.peer.make_writer(transport::topics::kLeaderCommand);
   ASSERT_TRUE(test::eventually([&] { return writer.matched() > 0; }));
   msg::JointCommand old = leader->command.sample();
-  old.header().seq(1'000'000);
-  old.header().stamp_ns(system_now_ns() - 10'000'000'000);
-  ASSERT_TRUE(writer.write(old));
+  uint64_t seq = 1'000'000;
   ASSERT_TRUE(test::eventually([&] {
+    // best effort: until the follower's reader has matched this writer too, samples may be lost
+    old.header().seq(++seq);
+    old.header().stamp_ns(system_now_ns() - 10'000'000'000);
+    EXPECT_TRUE(writer.write(old));
+    std::this_thread::sleep_for(std::chrono::microseconds(500));
     node->cycle(harness.tick());
     return counter("rejected_stale") >= 1.0;
   }));

@@ -43,6 +43,7 @@ TEST(TorqueLimiter, LimitsTheChangePerCycleToTheRateTimesTheCycle) {
   t = torques(5, -0.5);
   limiter.apply(t);
   EXPECT_DOUBLE_EQ(t[0], 5.0);
+  EXPECT_DOUBLE_EQ(limiter.largest_step_nm(), 1.0);
 }
 
 TEST(TorqueLimiter, StartsFromTheResetTorqueNotFromZero) {

@@ -27,6 +27,8 @@ class TorqueLimiter {
   uint64_t rate_limited() const { return rate_limited_; }
   /// Largest |tau_i| / max_torque_i seen after limiting (<= 1 by construction).
   double peak_ratio() const { return peak_ratio_; }
+  /// Largest change of any joint's torque from one apply() to the next [Nm].
+  double largest_step_nm() const { return largest_step_; }
 
  private:
   size_t joints_;
@@ -37,6 +39,7 @@ class TorqueLimiter {
   uint64_t saturations_ = 0;
   uint64_t rate_limited_ = 0;
   double peak_ratio_ = 0.0;
+  double largest_step_ = 0.0;
 };
 
 }  // namespace teleop::follower
