@@ -42,6 +42,21 @@ struct Pair {
     write_file(path, text);
     return path;
   }
+  // the shipped follower with a command timeout longer than the leader's liveliness lease
+  std::string follower_with_long_timeout() const {
+    std::string text = read_file(source("config/nodes/follower.yaml"));
+    const std::string from = "command_timeout_ms: 20";
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << "follower.yaml changed: update this test";
+    text.replace(at, from.size(), "command_timeout_ms: 5000");
+    // the model paths are relative to config/nodes; the copy lives elsewhere
+    for (std::string::size_type p = 0; (p = text.find("../models/", p)) != std::string::npos;) {
+      text.replace(p, 10, source("config/models/"));
+    }
+    const std::string path = dir + "/follower.yaml.in";
+    write_file(path, text);
+    return path;
+  }
 };
 
 // The follower's JointState samples as the test sees them on the bus (same host: the monotonic
@@ -172,6 +187,26 @@ TEST(FollowerProcess, HoldsWithinTheTimeoutWithoutATorqueStepWhenTheLeaderIsKill
   }
   ASSERT_TRUE(have_first) << "samples after the trip";
   EXPECT_LT(drift, 0.01) << "the hold keeps the pose";
+}
+
+TEST(FollowerProcess, HoldsWhenTheLeadersLivelinessLapsesBeforeTheCommandTimeout) {
+  Pair pair;
+  const std::string config = pair.follower_with_long_timeout();
+  RunningProcess leader(pair.args("leader", source("config/nodes/leader.yaml")));
+  RunningProcess follower(pair.args("follower", config));
+  ASSERT_TRUE(follower.wait_for_output("starting", std::chrono::seconds(20))) << follower.output();
+  follower.run_for(std::chrono::milliseconds(1500));
+  leader.process().signal(SIGKILL);
+  // the leader's lease is 250 ms (leader.yaml); the 5 s command timeout is far away
+  follower.run_for(std::chrono::milliseconds(1500));
+  ASSERT_EQ(follower.stop(SIGTERM, std::chrono::seconds(10)), 0) << follower.output();
+
+  const auto report = runtime::read_report(pair.dir + "/follower.yaml");
+  EXPECT_EQ(report.final_state, "safe_hold");
+  EXPECT_EQ(counter(report, "liveliness_trips"), 1.0);
+  const double latency_ms = counter(report, "watchdog_latency_max_ms");
+  RecordProperty("liveliness_hold_latency_ms", std::to_string(latency_ms));
+  EXPECT_LT(latency_ms, 1500.0) << "the lease, not the 5 s timeout, ended the commands";
 }
 
 }  // namespace
