@@ -235,6 +235,12 @@ void HandAdapter::queue_limits(Drive& d, size_t motor) {
   queue_sdo(d, od::kSoftwarePositionLimit, 2, static_cast<uint32_t>(std::max(*a, *b)), 4);
 }
 
+HandJointVector HandAdapter::joint_velocities() const {
+  HandJointVector dq = coupling_.joints_from_motors(feedback_.velocity_radps);
+  for (size_t j = 0; j < kHandJoints; ++j) dq[j] -= coupling_.offsets()[j];
+  return dq;
+}
+
 // ---------------------------------------------------------------------------------------------
 // commands
 

@@ -170,6 +170,8 @@ class HandAdapter {
   const HandAdapterStats& stats() const { return stats_; }
   /// The 20 joint angles of the last feedback, q = S_m m + q0.
   HandJointVector joint_positions() const { return coupling_.joints_from_motors(feedback_.position_rad); }
+  /// The 20 joint velocities, dq = S_m dm.
+  HandJointVector joint_velocities() const;
   /// Why the adapter failed (kFailed) or what put it in safe hold; empty otherwise.
   const char* message() const { return message_.data(); }
   /// Frames of every motor's channel (after homing: with the offset found).
