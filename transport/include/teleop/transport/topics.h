@@ -4,6 +4,7 @@
 #include <teleop/msg/arm.h>
 #include <teleop/msg/hand.h>
 #include <teleop/msg/status.h>
+#include <teleop/msg/twin.h>
 
 #include "teleop/transport/qos.h"
 
@@ -28,6 +29,7 @@ inline constexpr TopicSpec<msg::WrenchStamped> kFollowerWrench{"teleop/follower/
 // twin -> leader: rendered constraint torque (haptic feedback) and the twin's own state
 inline constexpr TopicSpec<msg::JointTorque> kTwinFeedback{"teleop/twin/feedback_torque", QosPreset::kStream};
 inline constexpr TopicSpec<msg::JointState> kTwinState{"teleop/twin/joint_state", QosPreset::kStream};
+inline constexpr TopicSpec<msg::JointCommand> kTwinCommand{"teleop/twin/joint_command", QosPreset::kStream};
 // hand
 inline constexpr TopicSpec<msg::HandCommand> kHandCommand{"teleop/hand/command", QosPreset::kStream};
 inline constexpr TopicSpec<msg::HandState> kHandState{"teleop/hand/state", QosPreset::kStream};
@@ -36,6 +38,14 @@ inline constexpr TopicSpec<msg::TdpaEnergy> kTdpaLeaderToFollower{"teleop/tdpa/l
                                                                   QosPreset::kStream};
 inline constexpr TopicSpec<msg::TdpaEnergy> kTdpaFollowerToLeader{"teleop/tdpa/follower_to_leader",
                                                                   QosPreset::kStream};
+// twin -> everyone: minimum distances of its configured geometry pairs; contact wrenches, one
+// topic per configured contact pair, named this prefix + the pair's name
+inline constexpr TopicSpec<msg::GeomDistances> kTwinDistances{"teleop/twin/distances", QosPreset::kStream};
+inline constexpr const char* kTwinContactWrenchPrefix = "teleop/twin/contact_wrench/";
+// lock-step simulation (thesis §3.4): the twin's state for step n, the controller's command for
+// step n; reliable, every sample counts
+inline constexpr TopicSpec<msg::JointState> kLockstepState{"teleop/lockstep/state", QosPreset::kEvent};
+inline constexpr TopicSpec<msg::JointCommand> kLockstepCommand{"teleop/lockstep/command", QosPreset::kEvent};
 // node health, one topic for all nodes (the header's source says who)
 inline constexpr TopicSpec<msg::NodeStatus> kNodeStatus{"teleop/node_status", QosPreset::kState};
 
