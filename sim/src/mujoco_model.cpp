@@ -5,15 +5,11 @@
 #include <stdexcept>
 #include <utility>
 
+#include "xml_mutex.h"
+
 namespace teleop::sim {
 
 namespace {
-
-// MuJoCo 2.2's XML parser and compiler keep global state: one load at a time.
-std::mutex& load_mutex() {
-  static std::mutex m;
-  return m;
-}
 
 // MuJoCo's messages span several lines: join them into one, trimmed.
 std::string one_line(const char* text) {
@@ -32,11 +28,16 @@ std::string one_line(const char* text) {
 
 }  // namespace
 
+std::mutex& xml_mutex() {
+  static std::mutex m;
+  return m;
+}
+
 MujocoModel MujocoModel::load(const std::string& path) {
   std::array<char, 1024> error{};
   std::unique_ptr<mjModel, ModelDeleter> model;
   {
-    const std::lock_guard lock(load_mutex());
+    const std::lock_guard lock(xml_mutex());
     model.reset(mj_loadXML(path.c_str(), nullptr, error.data(), static_cast<int>(error.size())));
   }
   error.back() = '\0';

@@ -34,6 +34,14 @@ class Reader {
     return take_next(out, ignored);
   }
 
+  /// Blocks until an unread sample is there (true) or `timeout_ns` passed (false). For lock-step
+  /// exchanges, which block by design; never in a paced loop.
+  bool wait_for_data(int64_t timeout_ns) {
+    const int64_t s = timeout_ns / 1'000'000'000;
+    const eprosima::fastrtps::Duration_t timeout(static_cast<int32_t>(s), static_cast<uint32_t>(timeout_ns - s * 1'000'000'000));
+    return reader_->wait_for_unread_message(timeout);
+  }
+
   int32_t matched() const { return status_->matched.load(std::memory_order_relaxed); }
   /// Remote writers whose liveliness is currently asserted.
   int32_t alive_writers() const { return status_->alive.load(std::memory_order_relaxed); }

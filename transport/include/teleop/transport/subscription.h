@@ -41,6 +41,9 @@ class Subscription {
     return taken;
   }
 
+  /// Blocks until a sample is waiting to be polled or `timeout_ns` passed (lock-step exchanges only).
+  bool wait_for_data(int64_t timeout_ns) { return reader_.wait_for_data(timeout_ns); }
+
   bool has_sample() const { return has_sample_; }
   /// The newest sample received so far (valid when has_sample()).
   const T& latest() const { return latest_; }

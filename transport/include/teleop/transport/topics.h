@@ -4,6 +4,7 @@
 #include <teleop/msg/arm.h>
 #include <teleop/msg/hand.h>
 #include <teleop/msg/status.h>
+#include <teleop/msg/twin.h>
 
 #include "teleop/transport/qos.h"
 
@@ -40,6 +41,14 @@ inline constexpr TopicSpec<msg::TdpaEnergy> kTdpaLeaderToFollower{"teleop/tdpa/l
                                                                   QosPreset::kStream};
 inline constexpr TopicSpec<msg::TdpaEnergy> kTdpaFollowerToLeader{"teleop/tdpa/follower_to_leader",
                                                                   QosPreset::kStream};
+// twin -> everyone: minimum distances of its configured geometry pairs; contact wrenches, one
+// topic per configured contact pair, named this prefix + the pair's name
+inline constexpr TopicSpec<msg::GeomDistances> kTwinDistances{"teleop/twin/distances", QosPreset::kStream};
+inline constexpr const char* kTwinContactWrenchPrefix = "teleop/twin/contact_wrench/";
+// lock-step simulation (thesis §3.4): the twin's state for step n, the controller's command for
+// step n; reliable, every sample counts
+inline constexpr TopicSpec<msg::JointState> kLockstepState{"teleop/lockstep/state", QosPreset::kEvent};
+inline constexpr TopicSpec<msg::JointCommand> kLockstepCommand{"teleop/lockstep/command", QosPreset::kEvent};
 // node health, one topic for all nodes (the header's source says who)
 inline constexpr TopicSpec<msg::NodeStatus> kNodeStatus{"teleop/node_status", QosPreset::kState};
 

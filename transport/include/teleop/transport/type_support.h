@@ -4,6 +4,7 @@
 #include <teleop/msg/armPubSubTypes.h>
 #include <teleop/msg/handPubSubTypes.h>
 #include <teleop/msg/statusPubSubTypes.h>
+#include <teleop/msg/twinPubSubTypes.h>
 
 namespace teleop::transport {
 
@@ -25,6 +26,7 @@ TELEOP_PUBSUB_TYPE(HandCommand)
 TELEOP_PUBSUB_TYPE(HandState)
 TELEOP_PUBSUB_TYPE(NodeStatus)
 TELEOP_PUBSUB_TYPE(TdpaEnergy)
+TELEOP_PUBSUB_TYPE(GeomDistances)
 
 #undef TELEOP_PUBSUB_TYPE
 

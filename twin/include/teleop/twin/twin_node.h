@@ -1,38 +1,34 @@
 #pragma once
-// The digital twin: a simulated copy of the robot coupled to the leader's measured joint state
-// by a joint PD law (PARTI eq. 2, tau = K (q_coupled - q_twin) - D dq_twin), so contacts act on
-// it, and its constraint torque rendered back as haptic feedback (eq. 3, tau = lambda * tau_c,
-// low-pass filtered). The joint model here is the simple one from common; the MuJoCo model
-// replaces it behind the same node.
+// The digital twin node (docs/twin.md): a MuJoCo simulation of the robot (TwinSimulation) run in
+// one of three modes – real-time coupled to a robot's joint state with the constraint torque
+// rendered back as haptic feedback (PARTI eq. 2/3), lock-step with an external controller
+// process (thesis §3.4), or hardware in the loop (PARTI §2.2) – publishing its state, the contact
+// wrench of each configured contact pair and the distances of the configured geometry pairs.
+
+#include <memory>
+#include <optional>
+#include <vector>
 
 #include <teleop/msg/arm.h>
+#include <teleop/msg/twin.h>
 
-#include "teleop/common/config.h"
-#include "teleop/common/joint_model.h"
 #include "teleop/common/lowpass.h"
 #include "teleop/runtime/node_runner.h"
 #include "teleop/transport/publication.h"
 #include "teleop/transport/subscription.h"
+#include "teleop/twin/hil_controller.h"
+#include "teleop/twin/lockstep_link.h"
+#include "teleop/twin/twin_config.h"
+#include "teleop/twin/twin_simulation.h"
 
 namespace teleop::twin {
-
-struct TwinConfig {
-  JointModelParams model;
-  JointVector home_rad{};
-  double coupling_stiffness_nm_per_rad = 300.0;
-  double coupling_damping_nms_per_rad = 10.0;
-  /// lambda of PARTI eq. 3.
-  double feedback_gain = 0.5;
-  double feedback_cutoff_hz = 30.0;
-  /// Leader silent longer than this: stop rendering feedback.
-  double peer_timeout_s = 0.1;
-};
 
 class TwinNode final : public runtime::NodeLogic {
  public:
   /// Reads the `twin:` section.
-  static TwinConfig parse_config(const ConfigNode& root);
+  static TwinConfig parse_config(const ConfigNode& root) { return parse_twin_config(root); }
 
+  /// Loads the model (throws std::runtime_error naming the file) and creates the endpoints of the mode.
   TwinNode(const TwinConfig& config, runtime::NodeContext& context);
 
   void cycle(const CycleTick& tick) override;
@@ -40,23 +36,46 @@ class TwinNode final : public runtime::NodeLogic {
   void active_faults(std::vector<uint32_t>& faults) const override;
   void fill_report(runtime::NodeReport& report) const override;
 
+  const TwinSimulation& simulation() const { return sim_; }
+
  private:
-  void couple();
-  void publish(bool render_feedback);
+  void cycle_coupled(const CycleTick& tick);
+  void cycle_lockstep();
+  void cycle_hil(const CycleTick& tick);
+  void render_feedback(bool coupled_fresh);
+  void publish_observations();
+  void record_trajectory();
+  void write_trajectory() const;
 
   TwinConfig config_;
-  double period_s_;
-  JointModel model_;
+  TwinSimulation sim_;
+  size_t joints_;
   LowPassFilter feedback_filter_;
-  transport::Subscription<msg::JointState> leader_state_;
+  std::optional<transport::Subscription<msg::JointState>> coupled_;
   transport::Publication<msg::JointState> state_pub_;
   transport::Publication<msg::JointTorque> feedback_pub_;
+  transport::Publication<msg::GeomDistances> distances_pub_;
+  std::vector<std::unique_ptr<transport::Publication<msg::WrenchStamped>>> wrench_pubs_;
+  std::optional<LockstepLink> lockstep_;
+  std::optional<HilController> hil_;
+  std::optional<transport::Publication<msg::JointCommand>> command_pub_;
+
   msg::NodeState state_ = msg::STATE_STARTING;
   JointVector q_coupled_{};
-  JointVector tau_nm_{};
+  JointVector dq_coupled_{};
+  JointVector tau_cmd_{};
   JointVector feedback_nm_{};
+  int64_t first_cycle_ns_ = -1;
+  int64_t last_cycle_ns_ = 0;
+  double sim_start_s_ = 0.0;
+  double hil_start_s_ = 0.0;
   double peak_feedback_nm_ = 0.0;
+  double peak_contact_force_n_ = 0.0;
+  double min_distance_m_ = 0.0;
+  double goal_error_rad_ = -1.0;
   uint64_t rejected_samples_ = 0;
+  uint64_t stalls_ = 0;
+  std::vector<double> trajectory_;
 };
 
 }  // namespace teleop::twin

@@ -1,0 +1,46 @@
+#pragma once
+// The twin's side of a lock-step exchange with an external controller process (thesis §3.4):
+// the state of step n goes out, the command of step n (the controller's n-th sample) comes back,
+// over reliable topics, so the sequence of states and commands does not depend on scheduling.
+// The wait is bounded: a controller that stops answering is a stall, reported, never a hang.
+
+#include <teleop/msg/arm.h>
+
+#include "teleop/transport/publication.h"
+#include "teleop/transport/subscription.h"
+
+namespace teleop::twin {
+
+class LockstepLink {
+ public:
+  /// Setup time: creates the reliable writer and reader.
+  LockstepLink(transport::Participant& participant, const std::string& node_name, size_t joints, double timeout_s);
+
+  /// Both directions matched with a controller.
+  bool connected() const;
+  /// The state to fill before exchange().
+  msg::JointState& state() { return state_.sample(); }
+
+  enum class Result { kCommand, kStalled };
+  /// Sends the state of the next step (unless it already went out and is still unanswered) and
+  /// waits up to the timeout for the command of that step. Blocks by design, bounded.
+  [[nodiscard]] Result exchange();
+  /// The command of the current step (valid after kCommand).
+  const msg::JointCommand& command() const { return command_.latest(); }
+  /// Steps whose command arrived.
+  uint64_t steps() const { return answered_; }
+
+  const transport::Publication<msg::JointState>& state_publication() const { return state_; }
+  const transport::Subscription<msg::JointCommand>& command_subscription() const { return command_; }
+
+ private:
+  bool answered(uint64_t step) const;
+
+  transport::Publication<msg::JointState> state_;
+  transport::Subscription<msg::JointCommand> command_;
+  int64_t timeout_ns_;
+  uint64_t answered_ = 0;
+  bool awaiting_ = false;
+};
+
+}  // namespace teleop::twin

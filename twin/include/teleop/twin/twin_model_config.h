@@ -1,0 +1,58 @@
+#pragma once
+// What the twin's simulation is made of: the MuJoCo model, the coupling (PARTI eq. 2), the
+// rendering (eq. 3), the safety-margin geometry only the twin sees (§3.1) and the geometry pairs
+// whose contact wrenches and distances are observed.
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "teleop/common/config.h"
+
+namespace teleop::twin {
+
+/// A sphere around a point of a body (e.g. an end effector), in the body's frame.
+struct MarginSphere {
+  std::string name;
+  std::string body;
+  std::array<double, 3> pos_m{};
+  double radius_m = 0.1;
+};
+
+/// A virtual wall: the half-space behind the plane through `point_m` with outward `normal`.
+struct MarginPlane {
+  std::string name;
+  std::array<double, 3> point_m{};
+  std::array<double, 3> normal{0, 0, 1};
+};
+
+/// Two sides, each a geom or a body (all its geoms): "geom:NAME" or "body:NAME".
+struct GeomPair {
+  std::string name;
+  std::string a;
+  std::string b;
+};
+
+struct TwinModelConfig {
+  std::string model_path;
+  /// Start pose ("" = the model's default state).
+  std::string keyframe;
+  /// Control period; the model's timestep must divide it.
+  double period_s = 0.001;
+  /// K and D of PARTI eq. 2, per coupled joint.
+  double coupling_stiffness_nm_per_rad = 300.0;
+  double coupling_damping_nms_per_rad = 10.0;
+  /// Render joint friction (MuJoCo frictionloss rows) too; off: contacts and limits only.
+  bool render_joint_friction = false;
+  std::vector<MarginSphere> margin_spheres;
+  std::vector<MarginPlane> margin_planes;
+  std::vector<GeomPair> contact_pairs;
+  std::vector<GeomPair> distance_pairs;
+  /// Distances beyond this are reported as this value [m] (the collision test's search margin).
+  double distance_range_m = 1.0;
+};
+
+/// Reads the `model:` part of the twin section (paths relative to the config file).
+TwinModelConfig read_twin_model_config(const ConfigNode& section);
+
+}  // namespace teleop::twin

@@ -1,0 +1,43 @@
+#include "teleop/twin/lockstep_link.h"
+
+#include "teleop/common/clock.h"
+#include "teleop/transport/joint_fields.h"
+
+namespace teleop::twin {
+
+LockstepLink::LockstepLink(transport::Participant& participant, const std::string& node_name, size_t joints,
+                           double timeout_s)
+    : state_(participant, transport::topics::kLockstepState, node_name),
+      command_(participant, transport::topics::kLockstepCommand),
+      timeout_ns_(static_cast<int64_t>(timeout_s * 1e9)) {
+  state_.sample().robot("twin");
+  state_.sample().arm("lockstep");
+  transport::presize_joint_state(state_.sample(), joints);
+}
+
+bool LockstepLink::connected() const { return state_.matched() > 0 && command_.reader().matched() > 0; }
+
+bool LockstepLink::answered(uint64_t step) const {
+  return command_.has_sample() && command_.latest().header().seq() >= step;
+}
+
+LockstepLink::Result LockstepLink::exchange() {
+  const uint64_t step = answered_ + 1;
+  if (!awaiting_) {
+    // the header's sequence number is the step: the controller answers with its own n-th sample
+    state_.publish();
+    awaiting_ = true;
+  }
+  const int64_t until = monotonic_now_ns() + timeout_ns_;
+  command_.poll();
+  while (!answered(step)) {
+    const int64_t left = until - monotonic_now_ns();
+    if (left <= 0) return Result::kStalled;
+    if (command_.wait_for_data(left)) command_.poll();
+  }
+  awaiting_ = false;
+  answered_ = step;
+  return Result::kCommand;
+}
+
+}  // namespace teleop::twin

@@ -1,0 +1,53 @@
+#include "teleop/twin/twin_config.h"
+
+#include <cmath>
+
+#include "teleop/common/joint_config.h"
+
+namespace teleop::twin {
+namespace {
+
+LockstepConfig read_lockstep(const ConfigNode& s) {
+  LockstepConfig c;
+  c.timeout_s = s.get_double("timeout_ms", Range{1, 600'000}, c.timeout_s * 1e3) * 1e-3;
+  c.steps = static_cast<uint64_t>(s.get_int("steps", Range{0, 1e9}, 0));
+  c.trajectory_file = s.get_string("trajectory_file", "");
+  return c;
+}
+
+HilConfig read_hil(const ConfigNode& s) {
+  HilConfig c;
+  const std::vector<double> goal = s.get_double_list("goal_rad", Range{-2 * M_PI, 2 * M_PI});
+  if (goal.empty() || goal.size() > kMaxJoints) throw s.error("goal_rad", "expected one angle per driven joint");
+  std::copy(goal.begin(), goal.end(), c.goal_rad.begin());
+  c.goal_joints = goal.size();
+  c.move_time_s = s.get_double("move_time_s", Range{0.01, 600}, c.move_time_s);
+  c.stiffness_nm_per_rad = s.get_double("stiffness_nm_per_rad", Range{0, 1e5}, c.stiffness_nm_per_rad);
+  c.damping_nms_per_rad = s.get_double("damping_nms_per_rad", Range{0, 1e4}, c.damping_nms_per_rad);
+  const std::string topic = s.get_choice("command_topic", {"twin", "leader"}, "twin");
+  c.command_topic = topic == "leader" ? HilConfig::CommandTopic::kLeader : HilConfig::CommandTopic::kTwin;
+  c.peer_timeout_s = s.get_double("peer_timeout_ms", Range{1, 60'000}, 100) * 1e-3;
+  return c;
+}
+
+}  // namespace
+
+TwinConfig parse_twin_config(const ConfigNode& root) {
+  const ConfigNode s = root.child("twin");
+  TwinConfig c;
+  const std::string mode = s.get_choice("mode", {"realtime", "lockstep", "hil"}, "realtime");
+  c.mode = mode == "lockstep" ? TwinMode::kLockstep : (mode == "hil" ? TwinMode::kHil : TwinMode::kRealtime);
+  c.joints = read_joint_count(s);
+  c.model = read_twin_model_config(s.child("model"));
+  const std::string coupled = s.get_choice("coupled_to", {"leader", "follower"}, "leader");
+  c.coupled_to = coupled == "follower" ? TwinConfig::CoupledTo::kFollower : TwinConfig::CoupledTo::kLeader;
+  c.feedback_gain = s.get_double("feedback_gain", Range{0, 10}, c.feedback_gain);
+  c.feedback_cutoff_hz = s.get_double("feedback_cutoff_hz", Range{0, 1e4}, c.feedback_cutoff_hz);
+  c.peer_timeout_s = s.get_double("peer_timeout_ms", Range{1, 60'000}, 100) * 1e-3;
+  if (auto lockstep = s.optional_child("lockstep")) c.lockstep = read_lockstep(*lockstep);
+  if (auto hil = s.optional_child("hil")) c.hil = read_hil(*hil);
+  if (c.mode == TwinMode::kHil && !s.has("hil")) throw s.error("hil", "mode: hil needs a hil section with the goal");
+  return c;
+}
+
+}  // namespace teleop::twin

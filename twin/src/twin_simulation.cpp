@@ -1,0 +1,145 @@
+#include "teleop/twin/twin_simulation.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace teleop::twin {
+namespace {
+
+// collision bit of the margins: no model uses it (parts/common.xml uses 1, 2, 4, 8)
+constexpr int kMarginBit = 16;
+
+std::string margin_attributes() {
+  std::ostringstream a;
+  a << "contype=\"" << kMarginBit << "\" conaffinity=\"" << kMarginBit
+    << "\" condim=\"1\" density=\"0\" group=\"4\" solref=\"0.004 1\" rgba=\"1 0.5 0 0.3\"";
+  return a.str();
+}
+
+int substeps_of(const mjModel* m, double period_s, const std::string& path) {
+  const double steps = period_s / m->opt.timestep;
+  const int n = static_cast<int>(std::lround(steps));
+  if (n < 1 || std::abs(steps - n) > 1e-6) {
+    throw std::runtime_error(path + ": timestep " + std::to_string(m->opt.timestep) +
+                             " s does not divide the control period " + std::to_string(period_s) + " s");
+  }
+  return n;
+}
+
+}  // namespace
+
+std::vector<sim::ModelAddition> margin_geometry(const TwinModelConfig& config) {
+  std::vector<sim::ModelAddition> additions;
+  for (const MarginSphere& s : config.margin_spheres) {
+    std::ostringstream g;
+    g.precision(17);
+    g << "<geom name=\"" << s.name << "\" type=\"sphere\" size=\"" << s.radius_m << "\" pos=\"" << s.pos_m[0] << ' '
+      << s.pos_m[1] << ' ' << s.pos_m[2] << "\" " << margin_attributes() << "/>";
+    additions.push_back({s.body, g.str()});
+  }
+  for (const MarginPlane& p : config.margin_planes) {
+    std::ostringstream g;
+    g.precision(17);
+    g << "<geom name=\"" << p.name << "\" type=\"plane\" size=\"2 2 0.1\" pos=\"" << p.point_m[0] << ' ' << p.point_m[1]
+      << ' ' << p.point_m[2] << "\" zaxis=\"" << p.normal[0] << ' ' << p.normal[1] << ' ' << p.normal[2] << "\" "
+      << margin_attributes() << "/>";
+    additions.push_back({"", g.str()});
+  }
+  return additions;
+}
+
+TwinSimulation::TwinSimulation(const TwinModelConfig& config)
+    : config_(config),
+      sim_(sim::load_with_additions(config.model_path, margin_geometry(config))),
+      joints_(sim::find_actuated_joints(sim_.model(), config.model_path)),
+      contacts_(sim_.model(), config.contact_pairs, config.model_path),
+      distances_(sim_.model(), config.distance_pairs, config.model_path),
+      substeps_(substeps_of(sim_.model(), config.period_s, config.model_path)),
+      efc_rendered_(static_cast<size_t>(std::max(sim_.model()->njmax, 1))),
+      qfrc_rendered_(static_cast<size_t>(sim_.model()->nv)) {
+  for (size_t i = 0; i < joints_.count; ++i) model_damping_[i] = sim_.model()->dof_damping[joints_.dof[i]];
+  reset();
+}
+
+void TwinSimulation::reset() {
+  if (config_.keyframe.empty()) {
+    sim_.reset();
+  } else {
+    sim_.reset(config_.keyframe);
+  }
+  tau_.fill(0.0);
+  constraint_.fill(0.0);
+  read_back();
+}
+
+template <typename TorqueLaw>
+void TwinSimulation::advance(TorqueLaw&& law) {
+  const mjModel* m = sim_.model();
+  mjData* d = sim_.data();
+  for (int s = 0; s < substeps_; ++s) {
+    // step1 computes the bias forces of this state; the torque goes in before step2 integrates
+    mj_step1(m, d);
+    for (size_t i = 0; i < joints_.count; ++i) {
+      tau_[i] = law(i, d->qpos[joints_.qpos[i]], d->qvel[joints_.dof[i]]);
+      d->qfrc_applied[joints_.dof[i]] = tau_[i] + d->qfrc_bias[joints_.dof[i]];
+    }
+    mj_step2(m, d);
+  }
+  read_back();
+}
+
+void TwinSimulation::set_coupling_damping(double damping_nms_per_rad) {
+  mjModel* m = sim_.model();
+  for (size_t i = 0; i < joints_.count; ++i) {
+    const size_t dof = static_cast<size_t>(joints_.dof[i]);
+    m->dof_damping[dof] = model_damping_[i] + damping_nms_per_rad;
+  }
+}
+
+void TwinSimulation::step_coupled(const JointVector& q_coupled_rad) {
+  const double k = config_.coupling_stiffness_nm_per_rad;
+  const double c = config_.coupling_damping_nms_per_rad;
+  // eq. 2's damping term as joint damping, which MuJoCo's Euler integrator treats implicitly:
+  // stable for stiff couplings on light wrist links where an explicit -D dq is not
+  set_coupling_damping(c);
+  advance([&](size_t i, double q, double) { return k * (q_coupled_rad[i] - q); });
+  for (size_t i = 0; i < joints_.count; ++i) tau_[i] -= c * dq_[i];
+}
+
+void TwinSimulation::step_torque(const JointVector& tau_nm) {
+  set_coupling_damping(0.0);
+  advance([&](size_t i, double, double) { return tau_nm[i]; });
+}
+
+void TwinSimulation::set_state(const JointVector& q_rad, const JointVector& dq_radps) {
+  mjData* d = sim_.data();
+  for (size_t i = 0; i < joints_.count; ++i) {
+    d->qpos[joints_.qpos[i]] = q_rad[i];
+    d->qvel[joints_.dof[i]] = dq_radps[i];
+  }
+  mj_forward(sim_.model(), d);
+  read_back();
+}
+
+void TwinSimulation::read_back() {
+  const mjModel* m = sim_.model();
+  mjData* d = sim_.data();
+  const mjtNum* rendered = d->qfrc_constraint;
+  if (!config_.render_joint_friction) {
+    // J^T f over the contact and limit rows only: dry joint friction is the twin's own business
+    for (int r = 0; r < d->nefc; ++r) {
+      const bool friction = d->efc_type[r] == mjCNSTR_FRICTION_DOF || d->efc_type[r] == mjCNSTR_FRICTION_TENDON;
+      efc_rendered_[static_cast<size_t>(r)] = friction ? 0.0 : d->efc_force[r];
+    }
+    mj_mulJacTVec(m, d, qfrc_rendered_.data(), efc_rendered_.data());
+    rendered = qfrc_rendered_.data();
+  }
+  for (size_t i = 0; i < joints_.count; ++i) {
+    q_[i] = d->qpos[joints_.qpos[i]];
+    dq_[i] = d->qvel[joints_.dof[i]];
+    constraint_[i] = rendered[joints_.dof[i]];
+  }
+}
+
+}  // namespace teleop::twin
