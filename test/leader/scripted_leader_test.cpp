@@ -110,3 +110,73 @@ TEST_F(ScriptedLeaderTest, CycleDoesNotAllocate) {
 
 }  // namespace
 }  // namespace teleop::leader
+
+namespace teleop::leader {
+namespace {
+
+// The simulated haptic arm rendering the follower's external torque: the safety case of a
+// follower dying in contact.
+class HapticLeaderTest : public ::testing::Test {
+ protected:
+  static ScriptedLeaderConfig haptic_config() {
+    ScriptedLeaderConfig c = config();
+    c.amplitude_rad.fill(0.0);
+    c.device = ScriptedLeaderConfig::Device::kHapticArm;
+    c.haptic_arm.model.model_path = std::string(TELEOP_SOURCE_DIR) + "/config/models/panda.xml";
+    c.haptic_arm.model.keyframe = "ready";
+    c.feedback_source = ScriptedLeaderConfig::FeedbackSource::kFollower;
+    c.feedback.fade_s = 0.1;
+    c.feedback.max_rate_nm_per_s = 500;  // 0.5 Nm per cycle
+    return c;
+  }
+  test::NodeHarness harness{"leader"};
+  ScriptedLeader node{haptic_config(), harness.context};
+  FollowerPeer follower{harness.peer};
+  transport::Subscription<msg::JointState> device{harness.peer, transport::topics::kLeaderState};
+
+  void SetUp() override {
+    ASSERT_TRUE(test::eventually([&] { return follower.state.matched() > 0 && device.reader().matched() > 0; }));
+  }
+  // one cycle; returns the torque the device rendered on joint 1
+  double step(bool follower_alive) {
+    if (follower_alive) EXPECT_TRUE(follower.state.publish());
+    std::this_thread::sleep_for(std::chrono::microseconds(500));
+    node.cycle(harness.tick());
+    return rendered();
+  }
+  double rendered() {
+    EXPECT_TRUE(test::eventually([&] {
+      device.poll();
+      return device.has_sample() && device.latest().header().seq() == harness.index;
+    }));
+    return device.latest().tau_measured_nm()[1];
+  }
+};
+
+TEST_F(HapticLeaderTest, FadesTheFeedbackToZeroWithoutAStepWhenTheFollowerDiesInContact) {
+  // the follower pushes against something: 8 Nm of external torque on joint 2
+  follower.state.sample().tau_ext_nm()[1] = 8.0;
+  for (int i = 0; i < 400; ++i) step(true);
+  ASSERT_EQ(node.state(), msg::STATE_RUNNING);
+  ASSERT_NEAR(rendered(), 8.0, 1e-9) << "the operator feels the contact";
+  // the follower dies: no more samples
+  double previous = rendered();
+  double largest_step = 0.0;
+  int cycles_to_zero = -1;
+  for (int i = 0; i < 400; ++i) {
+    const double now = step(false);
+    largest_step = std::max(largest_step, std::abs(now - previous));
+    previous = now;
+    if (now == 0.0 && cycles_to_zero < 0) cycles_to_zero = i + 1;
+  }
+  RecordProperty("cycles_to_zero", cycles_to_zero);
+  ASSERT_GT(cycles_to_zero, 0) << "faded out";
+  // peer_timeout 50 ms (wall time: test cycles are >= 0.5 ms apart, so at most 100 cycles)
+  // + fade 100 ms (100 cycles)
+  EXPECT_LE(cycles_to_zero, 100 + 100 + 5);
+  EXPECT_LE(largest_step, 0.5 + 1e-9) << "never a step above the rate limit";
+  EXPECT_EQ(node.state(), msg::STATE_SAFE_HOLD);
+}
+
+}  // namespace
+}  // namespace teleop::leader

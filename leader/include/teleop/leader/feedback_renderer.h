@@ -14,7 +14,11 @@ struct FeedbackConfig {
   double gain = 1.0;
   double cutoff_hz = 30.0;
   /// Per joint, what the device may render [Nm].
-  JointVector max_torque_nm{};
+  JointVector max_torque_nm = [] {
+    JointVector v{};
+    v.fill(20.0);
+    return v;
+  }();
   /// Largest change per second of the rendered torque (0: none).
   double max_rate_nm_per_s = 500.0;
   /// Time to fade the feedback to zero (source lost, clutch) and back.

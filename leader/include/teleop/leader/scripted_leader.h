@@ -6,6 +6,9 @@
 #include <teleop/msg/arm.h>
 
 #include "teleop/common/config.h"
+#include "teleop/leader/clutch.h"
+#include "teleop/leader/feedback_renderer.h"
+#include "teleop/leader/simulated_haptic_arm.h"
 #include "teleop/common/joint_model.h"
 #include "teleop/runtime/node_runner.h"
 #include "teleop/transport/publication.h"
@@ -27,6 +30,16 @@ struct ScriptedLeaderConfig {
   double damping_nms_per_rad = 10.0;
   /// Follower silent longer than this: freeze the command and report the peer lost.
   double peer_timeout_s = 0.1;
+  /// The device: `scripted` (the device is exactly where the script says) or a simulated
+  /// haptic arm pulled along the script by the operator's hand, feeling the feedback.
+  enum class Device { kScripted, kHapticArm } device = Device::kScripted;
+  HapticArmConfig haptic_arm;
+  /// What the operator feels: the twin's rendered constraint torque (model-mediated), the
+  /// follower's estimated external torque (joint-space position-force), or nothing.
+  enum class FeedbackSource { kTwin, kFollower, kNone } feedback_source = FeedbackSource::kTwin;
+  FeedbackConfig feedback;
+  /// Joint-space scaling from the device to the follower's command (Clutch).
+  double workspace_scale = 1.0;
 };
 
 class ScriptedLeader final : public runtime::NodeLogic {
@@ -44,6 +57,8 @@ class ScriptedLeader final : public runtime::NodeLogic {
  private:
   void update_state(int64_t now_ns);
   void operator_motion(double t_s);
+  void read_device();
+  void render_feedback(int64_t now_ns);
 
   ScriptedLeaderConfig config_;
   double period_s_;
@@ -56,7 +71,14 @@ class ScriptedLeader final : public runtime::NodeLogic {
   JointVector q_des_{};
   JointVector dq_des_{};
   JointVector feedback_{};
+  std::unique_ptr<SimulatedHapticArm> haptic_arm_;
+  DeviceState device_{};
+  JointVector device_home_{};
+  JointVector operator_target_{};  // where the device started: the script moves relative to it
+  Clutch clutch_;
+  FeedbackRenderer renderer_;
   uint64_t peer_lost_events_ = 0;
+  uint64_t device_faults_ = 0;
 };
 
 }  // namespace teleop::leader
