@@ -2,8 +2,12 @@
 // Runs N EmulatedDrives (one raw socket each, filtered to the frames addressed to its node),
 // stepped in real time, so that a CANopen master, candump or cansend can talk to them:
 //   teleop_hand_emulator --interface vcan0 [--nodes 1-9] [--rate 1000] [--duration 0]
+//                        [--inject SECONDS:NODE:KIND[:VALUE] ...]   (fault_schedule.h)
 // --duration 0 runs until SIGINT / SIGTERM. Prints one status line per node at exit.
 
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -14,18 +18,13 @@
 #include <vector>
 
 #include "teleop/can/emulated_drive.h"
+#include "teleop/can/fault_schedule.h"
 #include "teleop/can/socketcan_bus.h"
 
 namespace {
 
 volatile std::sig_atomic_t g_stop = 0;
 void on_signal(int) { g_stop = 1; }
-
-void usage() {
-  std::fprintf(stderr,
-               "usage: teleop_hand_emulator --interface IFACE [--nodes FIRST-LAST] [--rate HZ] "
-               "[--duration S]\n");
-}
 
 int64_t now_ns() {
   timespec t{};
@@ -36,37 +35,41 @@ int64_t now_ns() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  CLI::App app{"teleop_hand_emulator: the hand's CANopen motor controllers on a SocketCAN interface"};
   std::string interface;
-  int first = 1;
-  int last = 9;
+  std::string nodes = "1-9";
   double rate_hz = 1000.0;
   double duration_s = 0.0;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (a == "--interface" && has_value) {
-      interface = argv[++i];
-    } else if (a == "--nodes" && has_value) {
-      const std::string v = argv[++i];
-      const auto dash = v.find('-');
-      first = std::atoi(v.substr(0, dash).c_str());
-      last = dash == std::string::npos ? first : std::atoi(v.substr(dash + 1).c_str());
-    } else if (a == "--rate" && has_value) {
-      rate_hz = std::atof(argv[++i]);
-    } else if (a == "--duration" && has_value) {
-      duration_s = std::atof(argv[++i]);
-    } else if (a == "--help" || a == "-h") {
-      usage();
-      return 0;
-    } else {
-      usage();
-      return 2;
-    }
-  }
-  if (interface.empty() || first < 1 || last > 127 || first > last || rate_hz <= 0.0 || rate_hz > 20000.0) {
-    usage();
+  std::vector<std::string> inject;
+  app.add_option("--interface", interface, "SocketCAN interface (vcan0, can0)")->required();
+  app.add_option("--nodes", nodes, "node ids FIRST-LAST (or one id)");
+  app.add_option("--rate", rate_hz, "drive step rate [Hz]")->check(CLI::Range(1.0, 20000.0));
+  app.add_option("--duration", duration_s, "run time [s], 0 = until SIGINT/SIGTERM")->check(CLI::NonNegativeNumber);
+  app.add_option("--inject", inject,
+                 "fault at a time: SECONDS:NODE:KIND[:VALUE], KIND = heartbeat-stop|heartbeat-resume|emcy:CODE|"
+                 "stall|free|drop-tpdo[:N]|tpdo-resume|drop-rpdo[:N]|rpdo-resume|refuse-sdo|accept-sdo|bus-off|"
+                 "restarted (repeatable)");
+  CLI11_PARSE(app, argc, argv);
+  const auto dash = nodes.find('-');
+  const int first = std::atoi(nodes.substr(0, dash).c_str());
+  const int last = dash == std::string::npos ? first : std::atoi(nodes.substr(dash + 1).c_str());
+  if (first < 1 || last > 127 || first > last) {
+    std::fprintf(stderr, "teleop_hand_emulator: --nodes %s: need FIRST-LAST within 1-127\n", nodes.c_str());
     return 2;
   }
+  std::vector<teleop::can::ScheduledFault> faults;
+  try {
+    for (const std::string& spec : inject) {
+      faults.push_back(teleop::can::parse_fault_spec(spec));
+      if (faults.back().node < first || faults.back().node > last) {
+        throw std::invalid_argument("fault '" + spec + "': node is not emulated here");
+      }
+    }
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "teleop_hand_emulator: %s\n", e.what());
+    return 2;
+  }
+  std::sort(faults.begin(), faults.end(), [](const auto& a, const auto& b) { return a.at_s < b.at_s; });
 
   std::vector<std::unique_ptr<teleop::can::SocketCanBus>> buses;
   std::vector<std::unique_ptr<teleop::can::EmulatedDrive>> drives;
@@ -74,6 +77,9 @@ int main(int argc, char** argv) {
     for (int node = first; node <= last; ++node) {
       teleop::can::SocketCanOptions options;
       options.filters = teleop::can::canopen_node_filters(static_cast<uint8_t>(node));
+      // every RPDO2 COB-ID: a master may pack several nodes' targets into one frame on the id
+      // of another node (dummy mapping, docs/can_bus_budget.md)
+      options.filters.push_back({teleop::can::cob::kRpdo2, 0x780, false});
       buses.push_back(std::make_unique<teleop::can::SocketCanBus>(interface, options));
       teleop::can::EmulatedDriveConfig config;
       config.node_id = static_cast<teleop::can::NodeId>(node);
@@ -86,8 +92,9 @@ int main(int argc, char** argv) {
   }
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
-  std::fprintf(stderr, "teleop_hand_emulator: nodes %d-%d on %s at %.0f Hz\n", first, last, interface.c_str(),
-               rate_hz);
+  std::fprintf(stderr, "teleop_hand_emulator: nodes %d-%d on %s at %.0f Hz, %zu faults scheduled\n", first, last,
+               interface.c_str(), rate_hz, faults.size());
+  size_t next_fault = 0;
 
   const int64_t period_ns = static_cast<int64_t>(1e9 / rate_hz);
   const int64_t start = now_ns();
@@ -100,6 +107,14 @@ int main(int argc, char** argv) {
     // step by the real time elapsed (bounded, so a long stall does not run minutes of physics)
     const double dt = static_cast<double>(std::min<int64_t>(t - last_step, 50 * period_ns)) * 1e-9;
     last_step = t;
+    while (next_fault < faults.size() && t - start >= static_cast<int64_t>(faults[next_fault].at_s * 1e9)) {
+      const teleop::can::ScheduledFault& f = faults[next_fault++];
+      const size_t i = f.node - static_cast<size_t>(first);
+      const auto status = teleop::can::apply_fault(f, *drives[i], *buses[i]);
+      std::fprintf(stderr, "teleop_hand_emulator: t=%.3f s: injected %s into node %u: %s\n",
+                   static_cast<double>(t - start) * 1e-9, teleop::can::to_string(f.kind), unsigned{f.node},
+                   teleop::can::to_string(status));
+    }
     for (auto& d : drives) d->step(dt);
     next += period_ns;
     if (next < now_ns()) {

@@ -19,16 +19,14 @@
 #include "teleop/can/cia301.h"
 #include "teleop/can/emulated_drive.h"
 #include "teleop/can/socketcan_bus.h"
+#include "vcan_support.h"
 
 namespace teleop::can {
 namespace {
 
 using namespace std::chrono_literals;
 
-std::string iface() {
-  const char* e = std::getenv("TELEOP_VCAN_IF");
-  return e != nullptr && *e != '\0' ? e : "vcan0";
-}
+using test::iface;
 
 CanFrame frame(uint32_t id, std::initializer_list<uint8_t> bytes) {
   CanFrame f;
@@ -241,16 +239,9 @@ TEST(SocketCanVcan, CandumpSeesOurSyncFrames) {
 }
 
 TEST(SocketCanVcan, HandEmulatorProcessAnswersEveryNode) {
-  const char* env = std::getenv("TELEOP_HAND_EMULATOR");
-  const std::string exe = env != nullptr ? env : "teleop_hand_emulator";
   SocketCanBus master(iface());
-  const pid_t pid = ::fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    ::execlp(exe.c_str(), exe.c_str(), "--interface", iface().c_str(), "--nodes", "1-9", "--duration", "30",
-             static_cast<char*>(nullptr));
-    std::_Exit(127);
-  }
+  test::EmulatorProcess emulator({"--nodes", "1-9", "--duration", "30"});
+  ASSERT_TRUE(emulator.started());
   int answered = 0;
   for (uint8_t node = 1; node <= 9; ++node) {
     // the emulator may still be starting: repeat the request until its answer comes
@@ -266,9 +257,7 @@ TEST(SocketCanVcan, HandEmulatorProcessAnswersEveryNode) {
       }
     }
   }
-  ::kill(pid, SIGTERM);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
+  const int status = emulator.stop();
   EXPECT_EQ(answered, 9);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "emulator status " << status;
 }
@@ -276,16 +265,9 @@ TEST(SocketCanVcan, HandEmulatorProcessAnswersEveryNode) {
 // can-utils against the emulator process: candump sees the nine heartbeats, an NMT start for
 // all nodes sent with cansend turns every heartbeat to operational (0x05)
 TEST(SocketCanVcan, CanUtilsTalkToTheHandEmulator) {
-  const char* env = std::getenv("TELEOP_HAND_EMULATOR");
-  const std::string exe = env != nullptr ? env : "teleop_hand_emulator";
   SocketCanBus master(iface());
-  const pid_t pid = ::fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    ::execlp(exe.c_str(), exe.c_str(), "--interface", iface().c_str(), "--duration", "30",
-             static_cast<char*>(nullptr));
-    std::_Exit(127);
-  }
+  test::EmulatorProcess emulator({"--duration", "30"});
+  ASSERT_TRUE(emulator.started());
   const std::string dump = "timeout 10 candump -L -n 27 " + iface() + ",700:780";
   FILE* pipe = ::popen(dump.c_str(), "r");
   ASSERT_NE(pipe, nullptr);
@@ -308,9 +290,7 @@ TEST(SocketCanVcan, CanUtilsTalkToTheHandEmulator) {
       operational.insert(got.id);
     }
   }
-  ::kill(pid, SIGTERM);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
+  const int status = emulator.stop();
   EXPECT_EQ(operational.size(), 9u);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "emulator status " << status;
 }
