@@ -100,11 +100,28 @@ class SecurityNetns : public ::testing::Test {
     ASSERT_EQ(nodes_->wait_exit("follower", std::chrono::seconds(30)), 0) << nodes_->outputs();
   }
 
-  // a node that must refuse to start: exit status and its output
-  std::pair<std::optional<int>, std::string> start_refused(const YAML::Node& transport) {
+  // a node that must refuse to start: it exits non-zero, saying `message`
+  void expect_refused_start(const YAML::Node& transport, const std::string& message) {
     nodes_->start("leader", kLeaderHost, transport, kRunS);
     const auto status = nodes_->wait_exit("leader", std::chrono::seconds(30));
-    return {status, nodes_->process("leader").output()};
+    const std::string output = nodes_->process("leader").output();
+    ASSERT_TRUE(status.has_value()) << "the node ran with bad security files\n" << output;
+    EXPECT_NE(*status, 0) << output;
+    EXPECT_NE(output.find(message), std::string::npos) << "expected: " << message << "\n" << output;
+  }
+
+  // a follower with its own identity, and teleop_topic_probe beside it with `identity`'s files;
+  // returns what the probe printed
+  std::string run_probe_beside_follower(const std::string& role, const std::string& identity) {
+    nodes_->start("follower", kFollowerHost, secure(kFollowerHost, "follower"), kRunS + 1);
+    EXPECT_TRUE(nodes_->process("follower").wait_for_output("starting", std::chrono::seconds(20))) << nodes_->outputs();
+    const std::string config = nodes_->write_config(role, "probe", secure(kProbeHost, identity));
+    nodes_->start_program("probe", kProbeHost,
+                          {bin("teleop_topic_probe"), "--config", config, "--domain", std::to_string(nodes_->domain()),
+                           "--duration", std::to_string(kRunS - 1)});
+    EXPECT_EQ(nodes_->wait_exit("probe", std::chrono::seconds(30)), 0) << nodes_->outputs();
+    EXPECT_EQ(nodes_->wait_exit("follower", std::chrono::seconds(30)), 0) << nodes_->outputs();
+    return nodes_->process("probe").output();
   }
 
   static Pki* pki_;
@@ -139,15 +156,7 @@ TEST_F(SecurityNetns, NodeWithoutValidIdentityReceivesNothing) {
 
 // (3) the twin's identity is valid but grants neither publishing nor reading joint commands
 TEST_F(SecurityNetns, ValidIdentityWithoutPermissionCanNeitherPublishNorRead) {
-  nodes_->start("follower", kFollowerHost, secure(kFollowerHost, "follower"), kRunS + 1);
-  ASSERT_TRUE(nodes_->process("follower").wait_for_output("starting", std::chrono::seconds(20))) << nodes_->outputs();
-  const std::string config = nodes_->write_config("twin", "probe", secure(kProbeHost, "twin"));
-  nodes_->start_program("probe", kProbeHost,
-                        {bin("teleop_topic_probe"), "--config", config, "--domain", std::to_string(nodes_->domain()),
-                         "--duration", std::to_string(kRunS - 1)});
-  ASSERT_EQ(nodes_->wait_exit("probe", std::chrono::seconds(30)), 0) << nodes_->outputs();
-  ASSERT_EQ(nodes_->wait_exit("follower", std::chrono::seconds(30)), 0) << nodes_->outputs();
-  const std::string probe = nodes_->process("probe").output();
+  const std::string probe = run_probe_beside_follower("twin", "twin");
   EXPECT_NE(probe.find("publish teleop/leader/joint_command: refused"), std::string::npos) << probe;
   EXPECT_NE(probe.find("read teleop/leader/joint_command: refused"), std::string::npos) << probe;
   EXPECT_EQ(received(nodes_->report("follower"), "teleop/leader/joint_command").received, 0u);
@@ -156,15 +165,7 @@ TEST_F(SecurityNetns, ValidIdentityWithoutPermissionCanNeitherPublishNorRead) {
 // the control for (3): with the leader's identity the same probe publishes and the follower
 // receives, so the refusal above is the permissions' doing
 TEST_F(SecurityNetns, ProbeWithPermissionPublishesToTheFollower) {
-  nodes_->start("follower", kFollowerHost, secure(kFollowerHost, "follower"), kRunS + 1);
-  ASSERT_TRUE(nodes_->process("follower").wait_for_output("starting", std::chrono::seconds(20))) << nodes_->outputs();
-  const std::string config = nodes_->write_config("leader", "probe", secure(kProbeHost, "leader"));
-  nodes_->start_program("probe", kProbeHost,
-                        {bin("teleop_topic_probe"), "--config", config, "--domain", std::to_string(nodes_->domain()),
-                         "--duration", std::to_string(kRunS - 1)});
-  ASSERT_EQ(nodes_->wait_exit("probe", std::chrono::seconds(30)), 0) << nodes_->outputs();
-  ASSERT_EQ(nodes_->wait_exit("follower", std::chrono::seconds(30)), 0) << nodes_->outputs();
-  const std::string probe = nodes_->process("probe").output();
+  const std::string probe = run_probe_beside_follower("leader", "leader");
   EXPECT_NE(probe.find("publish teleop/leader/joint_command: sent"), std::string::npos) << probe;
   // the leader publishes commands but may not read them
   EXPECT_NE(probe.find("read teleop/leader/joint_command: refused"), std::string::npos) << probe;
@@ -213,12 +214,8 @@ TEST_F(SecurityNetns, ExpiredCertificateStopsTheNodeNamingTheFile) {
       {"/bin/bash", source("test/netns/make_expired_identity.sh"), pki_->dir(), "leader", expired}, std::chrono::seconds(30));
   ASSERT_EQ(made.exit_status, 0) << made.output;
   fs::copy_file(pki_->dir() + "/leader/permissions.p7s", expired + "/permissions.p7s");
-  const auto [status, output] = start_refused(transport(kLeaderHost, pki_->dir(), expired));
-  ASSERT_TRUE(status.has_value()) << "the node ran with an expired certificate\n" << output;
-  EXPECT_NE(*status, 0) << output;
-  EXPECT_NE(output.find("security.identity_certificate " + expired + "/identity.pem: certificate has expired"),
-            std::string::npos)
-      << output;
+  expect_refused_start(transport(kLeaderHost, pki_->dir(), expired),
+                       "security.identity_certificate " + expired + "/identity.pem: certificate has expired");
 }
 
 TEST_F(SecurityNetns, TamperedPermissionsStopTheNodeNamingTheFile) {
@@ -230,24 +227,16 @@ TEST_F(SecurityNetns, TamperedPermissionsStopTheNodeNamingTheFile) {
   ASSERT_NE(text.find(granted), std::string::npos);
   text.replace(text.find(granted), granted.size(), "<topic>*</topic>");
   write_file(twin + "/permissions.p7s", text);
-  const auto [status, output] = start_refused(transport(kLeaderHost, pki_->dir(), twin));
-  ASSERT_TRUE(status.has_value()) << output;
-  EXPECT_NE(*status, 0) << output;
-  EXPECT_NE(output.find("security.permissions " + twin + "/permissions.p7s: signature does not verify"),
-            std::string::npos)
-      << output;
+  expect_refused_start(transport(kLeaderHost, pki_->dir(), twin),
+                       "security.permissions " + twin + "/permissions.p7s: signature does not verify");
 }
 
 TEST_F(SecurityNetns, CertificateFromAnotherCaStopsTheNodeNamingTheFile) {
   const std::string foreign = rogue_pki_->dir() + "/leader";
-  const auto [status, output] = start_refused(transport(kLeaderHost, pki_->dir(), foreign));
-  ASSERT_TRUE(status.has_value()) << output;
-  EXPECT_NE(*status, 0) << output;
   // both CAs are called the same, so OpenSSL finds "the" issuer and its signature fails
-  EXPECT_NE(output.find("security.identity_certificate " + foreign + "/identity.pem: certificate signature failure"),
-            std::string::npos)
-      << output;
-  EXPECT_NE(output.find("verified against identity_ca " + pki_->dir() + "/identity_ca.pem"), std::string::npos) << output;
+  expect_refused_start(transport(kLeaderHost, pki_->dir(), foreign),
+                       "security.identity_certificate " + foreign + "/identity.pem: certificate signature failure " +
+                           "(verified against identity_ca " + pki_->dir() + "/identity_ca.pem)");
 }
 
 }  // namespace
