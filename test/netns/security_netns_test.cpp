@@ -57,8 +57,12 @@ void set_sentinel(YAML::Node& root) { root["leader"]["home_rad"][6] = kSentinelR
 class SecurityNetns : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    pki_ = new Pki("main");
-    rogue_pki_ = new Pki("rogue");  // same layout, its own CAs: what an outsider can make
+    try {
+      pki_ = new Pki("main");
+      rogue_pki_ = new Pki("rogue");  // same layout, its own CAs: what an outsider can make
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << e.what();
+    }
   }
   static void TearDownTestSuite() {
     delete pki_;
@@ -69,6 +73,7 @@ class SecurityNetns : public ::testing::Test {
     const std::string reason = netns_unavailable_reason();
     // never a silent pass or skip: without namespaces this test fails and says why
     ASSERT_TRUE(reason.empty()) << reason;
+    ASSERT_TRUE(pki_ != nullptr && rogue_pki_ != nullptr) << "scripts/make_pki.sh failed (see above)";
     network_ = std::make_unique<NetnsNetwork>(3);
     nodes_ = std::make_unique<NetnsNodes>(*network_);
   }
