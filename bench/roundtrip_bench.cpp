@@ -9,6 +9,11 @@
 // straight back unchanged. The RTT is taken on arrival, in the pinger's receive thread (the
 // Fast DDS listener thread, or a thread blocked in recv() for raw UDP), not at the loop's next
 // cycle: it measures the transport, not the loop phase.
+//
+// With --pki DIR (made by scripts/make_pki.sh --bench-identity) a third teleop variant runs the
+// UDP path with DDS Security on (PKI-DH, access control, AES-GCM-GMAC as the governance says),
+// and the report adds the CPU time both processes spent per round trip and the ratios
+// security on / off of the same run.
 
 #include <arpa/inet.h>
 #include <fcntl.h>
@@ -17,6 +22,7 @@
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/socket.h>
+#include <time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -30,6 +36,8 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <functional>
 #include <mutex>
 #include <optional>
@@ -90,7 +98,7 @@ std::string seconds_text(double s) {
 // ---------------------------------------------------------------------------------------------
 // variants
 
-enum class Variant { kDdsUdp, kDdsShm, kRawUdp };
+enum class Variant { kDdsUdp, kDdsShm, kDdsSecure, kRawUdp };
 
 const char* name_of(Variant v) {
   switch (v) {
@@ -98,6 +106,8 @@ const char* name_of(Variant v) {
       return "dds-udp";
     case Variant::kDdsShm:
       return "dds-shm";
+    case Variant::kDdsSecure:
+      return "dds-sec";
     case Variant::kRawUdp:
       return "raw-udp";
   }
@@ -105,20 +115,59 @@ const char* name_of(Variant v) {
 }
 
 std::optional<Variant> parse_variant(const std::string& name) {
-  for (Variant v : {Variant::kDdsUdp, Variant::kDdsShm, Variant::kRawUdp}) {
+  for (Variant v : {Variant::kDdsUdp, Variant::kDdsShm, Variant::kDdsSecure, Variant::kRawUdp}) {
     if (name == name_of(v)) return v;
   }
   return std::nullopt;
 }
 
-transport::ParticipantConfig dds_config(Variant v, int domain, const std::string& name) {
+// the secure variant's identities: the pinger is the leader (publishes leader/joint_state, reads
+// follower/joint_state); the echo the reverse, which only the benchmark's own identity may do
+transport::SecurityConfig bench_security(const std::string& pki, const std::string& identity) {
+  transport::SecurityConfig s;
+  s.identity_ca = pki + "/identity_ca.pem";
+  s.identity_certificate = pki + "/" + identity + "/identity.pem";
+  s.private_key = pki + "/" + identity + "/key.pem";
+  s.permissions_ca = pki + "/permissions_ca.pem";
+  s.governance = pki + "/governance.p7s";
+  s.permissions = pki + "/" + identity + "/permissions.p7s";
+  return s;
+}
+
+transport::ParticipantConfig dds_config(Variant v, int domain, const std::string& name, const std::string& pki,
+                                        const std::string& identity) {
   transport::ParticipantConfig config;
   config.domain_id = domain;
   config.name = name;
   // one transport only, so that the variant measures exactly that transport (discovery included)
-  config.udpv4 = v == Variant::kDdsUdp;
+  config.udpv4 = v == Variant::kDdsUdp || v == Variant::kDdsSecure;
   config.shm = v == Variant::kDdsShm;
+  if (v == Variant::kDdsSecure) config.security = bench_security(pki, identity);
   return config;
+}
+
+/// CPU time (user + system, all threads) of this process.
+int64_t own_cpu_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return ts.tv_sec * kNsPerS + ts.tv_nsec;
+}
+
+/// CPU time (user + system) of another process from /proc/<pid>/stat; -1 when unreadable.
+int64_t process_cpu_ns(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // fields after the command name (which may hold spaces) start after the last ')'
+  const auto close = text.rfind(')');
+  if (close == std::string::npos) return -1;
+  std::istringstream fields(text.substr(close + 2));
+  std::string skip;
+  for (int i = 3; i < 14; ++i) fields >> skip;  // state .. cmajflt
+  long long utime = 0;
+  long long stime = 0;
+  fields >> utime >> stime;
+  if (!fields) return -1;
+  return (utime + stime) * (kNsPerS / sysconf(_SC_CLK_TCK));
 }
 
 struct Options {
@@ -127,6 +176,7 @@ struct Options {
   double rate_hz = 1000.0;
   int domain = 77;
   std::string transport = "both";
+  std::string pki;
   uint64_t warmup = 200;
   std::string csv;
   double timeout_s = 10.0;
@@ -288,6 +338,9 @@ class EchoProcess {
     return line.substr(5);
   }
 
+  /// CPU time the echo has used so far; -1 when it cannot be read.
+  int64_t cpu_ns() const { return pid_ > 0 ? process_cpu_ns(pid_) : -1; }
+
   /// Throws if the echo has died.
   void check_alive() {
     if (pid_ <= 0) throw std::runtime_error("the echo process is gone");
@@ -364,7 +417,7 @@ void announce_ready(int fd, const std::string& what) {
 }
 
 int run_dds_echo(Variant v, const Options& opt, pid_t parent, int64_t end_mono_ns) {
-  transport::Participant participant(dds_config(v, opt.domain, "teleop_bench_echo"));
+  transport::Participant participant(dds_config(v, opt.domain, "teleop_bench_echo", opt.pki, "bench_echo"));
   // raw writer, not Publication: the sample goes back with the pinger's header untouched
   transport::Writer<JointState> writer = participant.make_writer(transport::topics::kFollowerState);
   std::atomic<uint64_t> echoed{0};
@@ -463,16 +516,18 @@ struct VariantResult {
   uint64_t overruns = 0;  // pacer, measured window only
   uint64_t skipped = 0;
   DurationHistogram lateness;  // release time - deadline, measured window only
+  int64_t cpu_ping_ns = 0;      // CPU time of the pinger in the measured window
+  int64_t cpu_echo_ns = -1;     // and of the echo (-1: unreadable)
 };
 
 std::vector<std::string> echo_args(Variant v, const Options& opt) {
   const double run_s = static_cast<double>(opt.warmup + opt.samples) / opt.rate_hz;
   // a hard upper bound on the echo's life even if the pinger vanished without a signal
   const double max_s = 2.0 * opt.timeout_s + 2.0 * run_s + 3.0 / opt.rate_hz + 30.0;
-  return {"--role",        "echo",
-          "--variant",     name_of(v),
-          "--domain",      std::to_string(opt.domain),
-          "--max-seconds", std::to_string(max_s)};
+  std::vector<std::string> args{"--role",   "echo", "--variant",     name_of(v),
+                                 "--domain", std::to_string(opt.domain), "--max-seconds", std::to_string(max_s)};
+  if (!opt.pki.empty()) args.insert(args.end(), {"--pki", opt.pki});
+  return args;
 }
 
 /// Paced sending: warm-up (at least opt.warmup samples and until a first reply came back), then
@@ -502,6 +557,8 @@ void run_paced(const Options& opt, RttRecorder& rec, EchoProcess& echo, const st
   result.window_begin = first;
   const uint64_t overruns0 = pacer.stats().overruns;
   const uint64_t skipped0 = pacer.stats().skipped;
+  const int64_t ping_cpu0 = own_cpu_ns();
+  const int64_t echo_cpu0 = echo.cpu_ns();
   for (uint64_t i = 0; i < opt.samples; ++i) {
     if (g_stop.load()) throw Interrupted();
     const auto tick = pacer.wait_next();
@@ -509,6 +566,9 @@ void run_paced(const Options& opt, RttRecorder& rec, EchoProcess& echo, const st
     if (!send(++seq)) ++result.send_failed;
     ++result.sent;
   }
+  result.cpu_ping_ns = own_cpu_ns() - ping_cpu0;
+  const int64_t echo_cpu1 = echo.cpu_ns();
+  result.cpu_echo_ns = echo_cpu0 < 0 || echo_cpu1 < 0 ? -1 : echo_cpu1 - echo_cpu0;
   result.overruns = pacer.stats().overruns - overruns0;
   result.skipped = pacer.stats().skipped - skipped0;
   // grace: the last replies are still on their way
@@ -533,7 +593,7 @@ VariantResult run_dds_variant(Variant v, const Options& opt) {
 
   RttRecorder rec(opt.samples);  // outlives the participant, whose callback feeds it
   const std::string source = session_source();
-  transport::Participant participant(dds_config(v, opt.domain, "teleop_bench_ping"));
+  transport::Participant participant(dds_config(v, opt.domain, "teleop_bench_ping", opt.pki, "leader"));
   transport::Publication<JointState> pub(participant, transport::topics::kLeaderState, source);
   pub.sample() = make_sample(source);
   auto reader =
@@ -638,16 +698,46 @@ VariantResult run_raw_udp_variant(const Options& opt, size_t payload_size, const
 
 double us(int64_t ns) { return static_cast<double>(ns) / 1e3; }
 
+/// CPU time of pinger and echo together per round trip [us]; negative when unknown.
+double cpu_us_per_round_trip(const VariantResult& r) {
+  if (r.cpu_echo_ns < 0 || r.sent == 0) return -1;
+  return us(r.cpu_ping_ns + r.cpu_echo_ns) / static_cast<double>(r.sent);
+}
+
+const VariantResult* find(const std::vector<VariantResult>& results, Variant v) {
+  for (const auto& r : results) {
+    if (r.variant == v && r.rtt.received > 0) return &r;
+  }
+  return nullptr;
+}
+
+// security on vs off, both over UDP in this run: latency percentiles and CPU per round trip
+void print_security_ratio(const std::vector<VariantResult>& results) {
+  const VariantResult* plain = find(results, Variant::kDdsUdp);
+  const VariantResult* secure = find(results, Variant::kDdsSecure);
+  if (plain == nullptr || secure == nullptr) return;
+  const auto ratio = [&](double f) {
+    return static_cast<double>(secure->rtt.histogram.percentile_ns(f)) /
+           static_cast<double>(plain->rtt.histogram.percentile_ns(f));
+  };
+  std::printf("\nratio security on/off (dds-sec / dds-udp, same run):\n  p50 %5.2fx   p99 %5.2fx", ratio(0.50),
+              ratio(0.99));
+  if (cpu_us_per_round_trip(*plain) > 0 && cpu_us_per_round_trip(*secure) > 0) {
+    std::printf("   cpu per round trip %5.2fx", cpu_us_per_round_trip(*secure) / cpu_us_per_round_trip(*plain));
+  }
+  std::printf("\n");
+}
+
 void print_results(const std::vector<VariantResult>& results) {
-  std::printf("\n%-8s %8s %6s %9s %9s %9s %9s %9s   %s\n", "variant", "samples", "lost", "p50_us", "p90_us", "p99_us",
-              "max_us", "min_us", "pacer (measured window)");
+  std::printf("\n%-8s %8s %6s %9s %9s %9s %9s %9s %10s   %s\n", "variant", "samples", "lost", "p50_us", "p90_us",
+              "p99_us", "max_us", "min_us", "cpu_us/rt", "pacer (measured window)");
   for (const auto& r : results) {
     const auto& h = r.rtt.histogram;
-    std::printf("%-8s %8" PRIu64 " %6" PRIu64 " %9.1f %9.1f %9.1f %9.1f %9.1f   overruns %" PRIu64 ", skipped %" PRIu64
-                ", lateness p99 %.1f us\n",
+    std::printf("%-8s %8" PRIu64 " %6" PRIu64 " %9.1f %9.1f %9.1f %9.1f %9.1f %10.1f   overruns %" PRIu64
+                ", skipped %" PRIu64 ", lateness p99 %.1f us\n",
                 name_of(r.variant), r.sent, r.sent - r.rtt.received, us(h.percentile_ns(0.50)),
-                us(h.percentile_ns(0.90)), us(h.percentile_ns(0.99)), us(h.max_ns()), us(h.min_ns()), r.overruns,
-                r.skipped, us(r.lateness.percentile_ns(0.99)));
+                us(h.percentile_ns(0.90)), us(h.percentile_ns(0.99)), us(h.max_ns()), us(h.min_ns()),
+                cpu_us_per_round_trip(r), r.overruns, r.skipped, us(r.lateness.percentile_ns(0.99)));
     if (r.send_failed || r.rtt.duplicates || r.rtt.stray) {
       std::printf("         (send refused %" PRIu64 ", duplicate replies %" PRIu64 ", foreign replies ignored %" PRIu64
                   ")\n",
@@ -668,6 +758,7 @@ void print_results(const std::vector<VariantResult>& results) {
     };
     std::printf("  %-8s p50 %5.2fx   p99 %5.2fx\n", name_of(r.variant), ratio(0.50), ratio(0.99));
   }
+  print_security_ratio(results);
 }
 
 void write_csv(const std::string& path, const std::vector<VariantResult>& results) {
@@ -688,6 +779,7 @@ int run_pinger(const Options& opt) {
   std::vector<Variant> variants;
   if (opt.transport == "udp" || opt.transport == "both") variants.push_back(Variant::kDdsUdp);
   if (opt.transport == "shm" || opt.transport == "both") variants.push_back(Variant::kDdsShm);
+  if (!opt.pki.empty()) variants.push_back(Variant::kDdsSecure);
   variants.push_back(Variant::kRawUdp);
 
   const auto wire = serialize(make_sample(session_source()));
@@ -740,6 +832,10 @@ int main(int argc, char** argv) {
   app.add_option("--warmup", opt.warmup, "round trips sent and discarded before measuring (after matching)")
       ->capture_default_str();
   app.add_option("--csv", opt.csv, "write every measured round trip to this CSV file");
+  app.add_option("--pki", opt.pki,
+                 "also run dds-udp with DDS Security, identities from this folder (scripts/make_pki.sh DIR "
+                 "--bench-identity)")
+      ->check(CLI::ExistingDirectory);
   app.add_option("--timeout", opt.timeout_s, "seconds the echo may take to start, match and first reply")
       ->check(CLI::Range(0.1, 600.0))
       ->capture_default_str();

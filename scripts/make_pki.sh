@@ -8,19 +8,23 @@
 #   <node>/key.pem         its private key (unencrypted: the node reads it unattended; keep it 0600)
 #   <node>/permissions.p7s what the node may publish and subscribe (S/MIME), nothing else
 # for the nodes leader, follower and twin. CA keys stay in OUT_DIR/ca/: move them offline after use.
+# --bench-identity adds bench_echo, the echo of teleop_roundtrip_bench (reads the leader's state,
+# publishes the follower's): for benchmark PKIs only, never in a deployment.
 #
-# usage: scripts/make_pki.sh OUT_DIR [--days N] [--domains MIN-MAX]
+# usage: scripts/make_pki.sh OUT_DIR [--days N] [--domains MIN-MAX] [--bench-identity]
 set -euo pipefail
 
-usage() { echo "usage: $0 OUT_DIR [--days N] [--domains MIN-MAX]" >&2; exit 2; }
+usage() { echo "usage: $0 OUT_DIR [--days N] [--domains MIN-MAX] [--bench-identity]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
 out=$1; shift
 days=365
+bench=0
 domains=0-232
 while [ $# -gt 0 ]; do
   case $1 in
     --days) days=${2:?}; shift 2 ;;
     --domains) domains=${2:?}; shift 2 ;;
+    --bench-identity) bench=1; shift ;;
     *) usage ;;
   esac
 done
@@ -37,7 +41,10 @@ follower_publish="teleop/follower/joint_state teleop/follower/wrench teleop/hand
 follower_subscribe="teleop/leader/joint_command teleop/hand/command teleop/tdpa/leader_to_follower $status"
 twin_publish="teleop/twin/feedback_torque teleop/twin/joint_state $status"
 twin_subscribe="teleop/leader/joint_state teleop/follower/joint_state $status"
+bench_echo_publish="teleop/follower/joint_state"
+bench_echo_subscribe="teleop/leader/joint_state"
 nodes="leader follower twin"
+[ "$bench" = 1 ] && nodes="$nodes bench_echo"
 
 mkdir -p "$out/ca"
 umask 077

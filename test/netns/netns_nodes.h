@@ -37,6 +37,9 @@ class NetnsNodes {
   /// Collects every process's output for `duration` (keeps their pipes from filling).
   void run_for(std::chrono::milliseconds duration);
 
+  /// Writes `role`'s config as `name` with this transport section; returns its path.
+  std::string write_config(const std::string& role, const std::string& name, const YAML::Node& transport,
+                           const ConfigEdit& edit = {}) const;
   std::string report_path(const std::string& name) const { return dir_ + "/" + name + ".report.yaml"; }
   runtime::NodeReport report(const std::string& name) const { return runtime::read_report(report_path(name)); }
   /// Everything the processes printed, for failure messages.
@@ -45,9 +48,6 @@ class NetnsNodes {
   int domain() const { return domain_; }
 
  private:
-  std::string write_config(const std::string& role, const std::string& name, const YAML::Node& transport,
-                           const ConfigEdit& edit) const;
-
   const NetnsNetwork& network_;
   std::string dir_;
   int domain_;

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace teleop::transport {
 namespace {
@@ -174,30 +176,36 @@ TEST(ParseParticipantConfig, ReadsDiscoveryServersInOrder) {
   EXPECT_STREQ(discovery_mode_name(c.discovery), "server");
 }
 
+// each case: the YAML after `head`, and the error it must give
+void expect_errors(const std::string& head, const std::vector<std::pair<std::string, std::string>>& cases) {
+  for (const auto& [yaml, error] : cases) EXPECT_EQ(error_of(head + yaml), error) << yaml;
+}
+
 TEST(ParseParticipantConfig, RejectsInconsistentDiscovery) {
-  const std::string head = "transport:\n  domain_id: 0\n";
-  EXPECT_EQ(error_of(head + "  discovery:\n    mode: server\n"),
-            "node.yaml:4: transport.discovery.servers: mode server needs at least one server ({id, address, port})");
-  EXPECT_EQ(error_of(head + "  discovery:\n    mode: peers\n"),
-            "node.yaml:4: transport.discovery.mode: mode peers needs transport.initial_peers (the hosts to announce to)");
-  EXPECT_EQ(error_of(head + "  initial_peers: [10.0.0.2]\n  discovery:\n    mode: multicast\n"),
-            "node.yaml:3: transport.initial_peers: initial peers replace multicast and servers: set discovery.mode: peers");
-  EXPECT_EQ(error_of(head + "  discovery:\n    mode: multicast\n    servers: [{id: 0, address: 10.0.0.1}]\n"),
-            "node.yaml:5: transport.discovery.servers: servers are only used with mode server, not multicast");
-  EXPECT_EQ(error_of(head + "  discovery:\n    mode: broadcast\n"),
-            "node.yaml:4: transport.discovery.mode: 'broadcast' is not one of: multicast, peers, server");
+  expect_errors("transport:\n  domain_id: 0\n",
+                {{"  discovery:\n    mode: server\n",
+                  "node.yaml:4: transport.discovery.servers: mode server needs at least one server ({id, address, port})"},
+                 {"  discovery:\n    mode: peers\n",
+                  "node.yaml:4: transport.discovery.mode: mode peers needs transport.initial_peers (the hosts to announce "
+                  "to)"},
+                 {"  initial_peers: [10.0.0.2]\n  discovery:\n    mode: multicast\n",
+                  "node.yaml:3: transport.initial_peers: initial peers replace multicast and servers: set "
+                  "discovery.mode: peers"},
+                 {"  discovery:\n    mode: multicast\n    servers: [{id: 0, address: 10.0.0.1}]\n",
+                  "node.yaml:5: transport.discovery.servers: servers are only used with mode server, not multicast"},
+                 {"  discovery:\n    mode: broadcast\n",
+                  "node.yaml:4: transport.discovery.mode: 'broadcast' is not one of: multicast, peers, server"}});
 }
 
 TEST(ParseParticipantConfig, RejectsBadDiscoveryServer) {
-  const std::string head = "transport:\n  domain_id: 0\n  discovery:\n    mode: server\n    servers:\n";
-  EXPECT_EQ(error_of(head + "      - {id: 0, address: server.lan}\n"),
-            "node.yaml:6: transport.discovery.servers[0].address: 'server.lan' is not an IPv4 address");
-  EXPECT_EQ(error_of(head + "      - {id: 256, address: 10.0.0.1}\n"),
-            "node.yaml:6: transport.discovery.servers[0].id: value 256 is out of range [0, 255]");
-  EXPECT_EQ(error_of(head + "      - {id: 1, address: 10.0.0.1}\n      - {id: 1, address: 10.0.0.2}\n"),
-            "node.yaml:7: transport.discovery.servers[1].id: server id 1 is listed twice");
-  EXPECT_EQ(error_of(head + "      - {address: 10.0.0.1}\n"),
-            "node.yaml:6: transport.discovery.servers[0].id: missing required key");
+  expect_errors("transport:\n  domain_id: 0\n  discovery:\n    mode: server\n    servers:\n",
+                {{"      - {id: 0, address: server.lan}\n",
+                  "node.yaml:6: transport.discovery.servers[0].address: 'server.lan' is not an IPv4 address"},
+                 {"      - {id: 256, address: 10.0.0.1}\n",
+                  "node.yaml:6: transport.discovery.servers[0].id: value 256 is out of range [0, 255]"},
+                 {"      - {id: 1, address: 10.0.0.1}\n      - {id: 1, address: 10.0.0.2}\n",
+                  "node.yaml:7: transport.discovery.servers[1].id: server id 1 is listed twice"},
+                 {"      - {address: 10.0.0.1}\n", "node.yaml:6: transport.discovery.servers[0].id: missing required key"}});
 }
 
 TEST(ParseParticipantConfig, SecurityIsOffWithoutItsSection) {

@@ -11,6 +11,7 @@
 #include <fastrtps/utils/IPLocator.h>
 #include <fastrtps/xmlparser/XMLProfileManager.h>
 
+#include <filesystem>
 #include <mutex>
 #include <stdexcept>
 
@@ -105,7 +106,8 @@ void add_discovery_servers(const std::vector<DiscoveryServer>& servers, dds::Dom
 // DDS Security by the builtin plugins: PKI-DH authentication, permissions, AES-GCM-GMAC
 void add_security(const SecurityConfig& security, dds::DomainParticipantQos& qos) {
   auto& properties = qos.properties().properties();
-  const auto file = [](const std::string& path) { return "file:" + path; };
+  // Fast DDS takes file:// URIs only
+  const auto file = [](const std::string& path) { return "file://" + std::filesystem::absolute(path).string(); };
   properties.emplace_back("dds.sec.auth.plugin", "builtin.PKI-DH");
   properties.emplace_back("dds.sec.auth.builtin.PKI-DH.identity_ca", file(security.identity_ca));
   properties.emplace_back("dds.sec.auth.builtin.PKI-DH.identity_certificate", file(security.identity_certificate));
