@@ -47,6 +47,7 @@ TEST(TwinSimulation, TracksAScriptedCoupledMotionWithSmallError) {
   EXPECT_LT(worst_tracking, 0.03) << "K = 300 Nm/rad, D = 10 Nms/rad, bias forces compensated";
   EXPECT_LT(worst_static, 0.003) << "frictionloss <= 0.64 Nm over K = 300 Nm/rad is at most 2.1e-3 rad";
   for (size_t i = 0; i < sim.joints(); ++i) EXPECT_NEAR(sim.constraint_torque_nm()[i], 0.0, 1e-9) << "free space";
+  EXPECT_EQ(sim.warnings(), 0);
 }
 
 TEST(TwinSimulation, RenderedTorquePointsOutOfTheWallAndGrowsWithPenetration) {
@@ -67,6 +68,7 @@ TEST(TwinSimulation, RenderedTorquePointsOutOfTheWallAndGrowsWithPenetration) {
     EXPECT_LT(sim.distance_m(0), 1e-3) << "the flange is at the wall";
     previous = tau;
   }
+  EXPECT_EQ(sim.warnings(), 0);
   // the coupling spring balances the constraint: the twin stays at the wall, the target is beyond
   EXPECT_LT(sim.q_rad()[kShoulder], home[kShoulder] + 0.25 - 0.05);
 }
@@ -101,6 +103,7 @@ struct MarginReplay {
   double min_physical_distance = 1.0;
   double min_twin_distance = 1.0;
   double final_physical_distance = 1.0;
+  int warnings = 0;
 
   explicit MarginReplay(double feedback_gain) {
     TwinModelConfig physical_config;
@@ -135,6 +138,7 @@ struct MarginReplay {
       min_twin_distance = std::min(min_twin_distance, twin.distance_m(0));
       final_physical_distance = gap;
     }
+    warnings = physical.warnings() + twin.warnings();
   }
 
   static void operator_torque(const mjModel* m, mjData* d, int left, int right, std::vector<mjtNum>& jac,
@@ -160,6 +164,7 @@ TEST(TwinSafetyMargins, KeepTheOperatedHandsApartWhenRendered) {
   // operator's 15 N, with no margin added for it)
   EXPECT_GE(replay.min_physical_distance, -0.025) << "stated tolerance: 25 mm during the impact";
   EXPECT_GE(replay.final_physical_distance, -0.01) << "stated tolerance: 10 mm at rest";
+  EXPECT_EQ(replay.warnings, 0);
   EXPECT_GE(replay.min_twin_distance, -0.005) << "the twin's spheres themselves barely penetrate";
 }
 
@@ -181,6 +186,7 @@ TEST(TwinSimulation, StepsWithoutAllocating) {
   }
   sim.set_state(target, JointVector{});
   EXPECT_EQ(counter.count(), 0u);
+  EXPECT_EQ(sim.warnings(), 0);
 }
 
 TEST(TwinSimulation, RejectsAMarginOnABodyTheModelDoesNotHave) {
