@@ -4,6 +4,7 @@
 #include <csignal>
 #include <map>
 #include <mutex>
+#include <sstream>
 
 #include "node_harness.h"
 #include "process_helpers.h"
@@ -139,6 +140,50 @@ TEST(TwinHil, FollowerReachesTheGoalOfTheTwinsController) {
   EXPECT_GT(follower_report.received[0].received, 1000u) << "the follower was driven by the twin's commands";
   // once: when the twin ended its run before the follower did (the defined safe state)
   EXPECT_LE(counter(follower_report, "watchdog_trips"), 1);
+}
+
+// the CSV's rows as numbers (the error column must be empty)
+std::vector<std::vector<double>> csv_rows(const std::string& csv) {
+  std::vector<std::vector<double>> rows;
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    EXPECT_EQ(line.substr(line.size() - 3), ",\"\"") << "a variant failed: " << line;
+    std::vector<double> row;
+    std::istringstream cells(line.substr(0, line.size() - 3));
+    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST(TwinSweep, AThreeByThreeGridGivesLargerForcesOnHigherPanels) {
+  const std::string dir = make_temp_dir();
+  const std::string table = dir + "/sweep.csv";
+  const std::string config = dir + "/wiping_panel.yaml";
+  std::string text = read_file(source("config/sweeps/wiping_panel.yaml"));
+  text.replace(text.find("../models/"), 10, source("config/models/"));
+  write_file(config, text);
+  const ProcessResult r =
+      run_process({bin("teleop_twin_sweep"), "-c", config, "-o", table, "--jobs", "2"}, std::chrono::seconds(120));
+  ASSERT_EQ(r.exit_status, 0) << r.output;
+  // columns: height, friction, contact_steps, peak_force_n, mean_force_n, final_error_m, wall_time_s, rt_factor, warnings
+  const auto rows = csv_rows(read_file(table));
+  ASSERT_EQ(rows.size(), 9u);
+  for (size_t f = 0; f < 3; ++f) {
+    SCOPED_TRACE("friction " + std::to_string(rows[f][1]));
+    for (size_t h = 1; h < 3; ++h) {
+      const auto& lower = rows[3 * (h - 1) + f];
+      const auto& higher = rows[3 * h + f];
+      EXPECT_GT(higher[0], lower[0]);
+      EXPECT_GT(higher[2], lower[2]) << "a higher panel is met earlier: more steps in contact";
+      EXPECT_GT(higher[4], lower[4]) << "a higher panel: larger contact force";
+      EXPECT_GT(higher[5], lower[5]) << "a higher panel holds the tool further from its target";
+    }
+  }
+  // the real-time factor (column 7) is measured in bench/twin_bench and docs/twin.md, not asserted
+  for (const auto& row : rows) EXPECT_EQ(row[8], 0) << "no MuJoCo warning";
 }
 
 }  // namespace
