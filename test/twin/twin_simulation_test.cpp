@@ -73,6 +73,24 @@ TEST(TwinSimulation, RenderedTorquePointsOutOfTheWallAndGrowsWithPenetration) {
   EXPECT_LT(sim.q_rad()[kShoulder], home[kShoulder] + 0.25 - 0.05);
 }
 
+TEST(TwinSimulation, AMarginPlaneIsAVirtualWallForTheMarginSpheresOnly) {
+  TwinModelConfig config = test::wall_model();
+  // a 3 cm sphere around the flange's end (ee_site at x = 0.5 m, so its surface is at 0.53 m) and
+  // a virtual wall 5 mm in front of that, 1.5 cm in front of the real wall (x = 0.55 m)
+  config.margin_planes = {{"guard", {0.535, 0, 0}, {-1, 0, 0}}};
+  config.margin_spheres = {{"tip", "link7", {0, 0, 0.107}, 0.03}};
+  config.distance_pairs = {{"tip_guard", "geom:tip", "geom:guard"}, {"flange_wall", "geom:link7_flange", "geom:wall"}};
+  TwinSimulation sim(config);
+  EXPECT_NEAR(sim.distance_m(0), 0.005, 2e-3) << "the sphere starts about 5 mm from the virtual wall";
+  const JointVector home = sim.q_rad();
+  hold_shoulder_offset(sim, home, 0.2, 1000);
+  EXPECT_LT(sim.constraint_torque_nm()[kShoulder], 0.0) << "the virtual wall pushes back";
+  EXPECT_LT(sim.distance_m(0), 0.001) << "the sphere is at the virtual wall";
+  EXPECT_GT(sim.distance_m(0), -0.005) << "and stays out of it";
+  EXPECT_GT(sim.distance_m(1), 0.02) << "and the flange away from the real one";
+  EXPECT_EQ(sim.warnings(), 0);
+}
+
 TEST(TwinSimulation, LeavesJointFrictionOutOfTheRenderedTorqueUnlessAsked) {
   TwinModelConfig config;
   config.model_path = test::model_path("panda.xml");
