@@ -47,6 +47,7 @@ TEST(TwinSimulation, TracksAScriptedCoupledMotionWithSmallError) {
   EXPECT_LT(worst_tracking, 0.03) << "K = 300 Nm/rad, D = 10 Nms/rad, bias forces compensated";
   EXPECT_LT(worst_static, 0.003) << "frictionloss <= 0.64 Nm over K = 300 Nm/rad is at most 2.1e-3 rad";
   for (size_t i = 0; i < sim.joints(); ++i) EXPECT_NEAR(sim.constraint_torque_nm()[i], 0.0, 1e-9) << "free space";
+  EXPECT_EQ(sim.warnings(), 0);
 }
 
 TEST(TwinSimulation, RenderedTorquePointsOutOfTheWallAndGrowsWithPenetration) {
@@ -67,8 +68,27 @@ TEST(TwinSimulation, RenderedTorquePointsOutOfTheWallAndGrowsWithPenetration) {
     EXPECT_LT(sim.distance_m(0), 1e-3) << "the flange is at the wall";
     previous = tau;
   }
+  EXPECT_EQ(sim.warnings(), 0);
   // the coupling spring balances the constraint: the twin stays at the wall, the target is beyond
   EXPECT_LT(sim.q_rad()[kShoulder], home[kShoulder] + 0.25 - 0.05);
+}
+
+TEST(TwinSimulation, AMarginPlaneIsAVirtualWallForTheMarginSpheresOnly) {
+  TwinModelConfig config = test::wall_model();
+  // a 3 cm sphere around the flange's end (ee_site at x = 0.5 m, so its surface is at 0.53 m) and
+  // a virtual wall 5 mm in front of that, 1.5 cm in front of the real wall (x = 0.55 m)
+  config.margin_planes = {{"guard", {0.535, 0, 0}, {-1, 0, 0}}};
+  config.margin_spheres = {{"tip", "link7", {0, 0, 0.107}, 0.03}};
+  config.distance_pairs = {{"tip_guard", "geom:tip", "geom:guard"}, {"flange_wall", "geom:link7_flange", "geom:wall"}};
+  TwinSimulation sim(config);
+  EXPECT_NEAR(sim.distance_m(0), 0.005, 2e-3) << "the sphere starts about 5 mm from the virtual wall";
+  const JointVector home = sim.q_rad();
+  hold_shoulder_offset(sim, home, 0.2, 1000);
+  EXPECT_LT(sim.constraint_torque_nm()[kShoulder], 0.0) << "the virtual wall pushes back";
+  EXPECT_LT(sim.distance_m(0), 0.001) << "the sphere is at the virtual wall";
+  EXPECT_GT(sim.distance_m(0), -0.005) << "and stays out of it";
+  EXPECT_GT(sim.distance_m(1), 0.02) << "and the flange away from the real one";
+  EXPECT_EQ(sim.warnings(), 0);
 }
 
 TEST(TwinSimulation, LeavesJointFrictionOutOfTheRenderedTorqueUnlessAsked) {
@@ -101,6 +121,7 @@ struct MarginReplay {
   double min_physical_distance = 1.0;
   double min_twin_distance = 1.0;
   double final_physical_distance = 1.0;
+  int warnings = 0;
 
   explicit MarginReplay(double feedback_gain) {
     TwinModelConfig physical_config;
@@ -135,6 +156,7 @@ struct MarginReplay {
       min_twin_distance = std::min(min_twin_distance, twin.distance_m(0));
       final_physical_distance = gap;
     }
+    warnings = physical.warnings() + twin.warnings();
   }
 
   static void operator_torque(const mjModel* m, mjData* d, int left, int right, std::vector<mjtNum>& jac,
@@ -160,6 +182,7 @@ TEST(TwinSafetyMargins, KeepTheOperatedHandsApartWhenRendered) {
   // operator's 15 N, with no margin added for it)
   EXPECT_GE(replay.min_physical_distance, -0.025) << "stated tolerance: 25 mm during the impact";
   EXPECT_GE(replay.final_physical_distance, -0.01) << "stated tolerance: 10 mm at rest";
+  EXPECT_EQ(replay.warnings, 0);
   EXPECT_GE(replay.min_twin_distance, -0.005) << "the twin's spheres themselves barely penetrate";
 }
 
@@ -181,6 +204,7 @@ TEST(TwinSimulation, StepsWithoutAllocating) {
   }
   sim.set_state(target, JointVector{});
   EXPECT_EQ(counter.count(), 0u);
+  EXPECT_EQ(sim.warnings(), 0);
 }
 
 TEST(TwinSimulation, RejectsAMarginOnABodyTheModelDoesNotHave) {

@@ -13,11 +13,12 @@ bool command_usable(const msg::JointCommand& cmd, size_t joints) {
          ok(cmd.damping_nms_per_rad());
 }
 
-void command_torque(const msg::JointCommand& cmd, const JointVector& q_rad, const JointVector& dq_radps, size_t joints,
-                    JointVector& tau_nm) {
+void command_torque(const msg::JointCommand& cmd, const JointVector& q_rad, size_t joints, JointVector& tau_nm,
+                    JointVector& damping) {
   for (size_t i = 0; i < joints; ++i) {
-    tau_nm[i] = cmd.stiffness_nm_per_rad()[i] * (cmd.q_des_rad()[i] - q_rad[i]) +
-                cmd.damping_nms_per_rad()[i] * (cmd.dq_des_radps()[i] - dq_radps[i]) + cmd.tau_ff_nm()[i];
+    damping[i] = cmd.damping_nms_per_rad()[i];
+    tau_nm[i] = cmd.stiffness_nm_per_rad()[i] * (cmd.q_des_rad()[i] - q_rad[i]) + damping[i] * cmd.dq_des_radps()[i] +
+                cmd.tau_ff_nm()[i];
   }
 }
 

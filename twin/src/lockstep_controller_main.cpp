@@ -10,7 +10,6 @@ int main(int argc, char** argv) {
                "teleop_lockstep_controller"};
   teleop::transport::ParticipantConfig transport;
   transport.name = "lockstep_controller";
-  transport.interface_whitelist = {"127.0.0.1"};
   teleop::twin::LockstepControllerConfig config;
   app.add_option("--domain", transport.domain_id, "DDS domain id")->check(CLI::Range(0, 232));
   app.add_option("--stall-after", config.stall_after, "stop answering after this many steps (0: never)");

@@ -6,10 +6,11 @@
 namespace teleop::twin {
 
 LockstepLink::LockstepLink(transport::Participant& participant, const std::string& node_name, size_t joints,
-                           double timeout_s)
+                           double timeout_s, double max_wait_s)
     : state_(participant, transport::topics::kLockstepState, node_name),
       command_(participant, transport::topics::kLockstepCommand),
-      timeout_ns_(static_cast<int64_t>(timeout_s * 1e9)) {
+      timeout_ns_(static_cast<int64_t>(timeout_s * 1e9)),
+      max_wait_ns_(static_cast<int64_t>(max_wait_s * 1e9)) {
   state_.sample().robot("twin");
   state_.sample().arm("lockstep");
   transport::presize_joint_state(state_.sample(), joints);
@@ -26,14 +27,13 @@ LockstepLink::Result LockstepLink::exchange() {
   if (!awaiting_) {
     // the header's sequence number is the step: the controller answers with its own n-th sample
     state_.publish();
+    sent_ns_ = monotonic_now_ns();
     awaiting_ = true;
   }
-  const int64_t until = monotonic_now_ns() + timeout_ns_;
   command_.poll();
-  while (!answered(step)) {
-    const int64_t left = until - monotonic_now_ns();
-    if (left <= 0) return Result::kStalled;
-    if (command_.wait_for_data(left)) command_.poll();
+  if (!answered(step) && command_.wait_for_data(max_wait_ns_)) command_.poll();
+  if (!answered(step)) {
+    return monotonic_now_ns() - sent_ns_ > timeout_ns_ ? Result::kStalled : Result::kPending;
   }
   awaiting_ = false;
   answered_ = step;

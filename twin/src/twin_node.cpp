@@ -29,7 +29,8 @@ TwinNode::TwinNode(const TwinConfig& config, runtime::NodeContext& context)
     : config_(config),
       sim_([&] {
         TwinModelConfig model = config.model;
-        model.period_s = 1.0 / context.node.rate_hz;
+        // lock-step: one model timestep per exchange, whatever the loop's rate cap
+        model.period_s = config.mode == TwinMode::kLockstep ? 0.0 : 1.0 / context.node.rate_hz;
         return model;
       }()),
       joints_(sim_.joints()),
@@ -43,7 +44,8 @@ TwinNode::TwinNode(const TwinConfig& config, runtime::NodeContext& context)
   }
   if (config.mode == TwinMode::kLockstep) {
     // the exchange runs as fast as the controller answers; the loop rate only caps it
-    lockstep_.emplace(context.participant, context.node.name, joints_, config.lockstep.timeout_s);
+    lockstep_.emplace(context.participant, context.node.name, joints_, config.lockstep.timeout_s,
+                      1.0 / context.node.rate_hz);
     if (config.lockstep.steps > 0 && !config.lockstep.trajectory_file.empty()) {
       trajectory_.reserve(config.lockstep.steps * 2 * joints_);
     }
@@ -124,19 +126,22 @@ void TwinNode::cycle_lockstep() {
   transport::copy_joints(sim_.dq_radps(), joints_, st.dq_radps());
   transport::copy_joints(sim_.tau_nm(), joints_, st.tau_measured_nm());
   transport::copy_joints(sim_.constraint_torque_nm(), joints_, st.tau_ext_nm());
-  if (lockstep_->exchange() == LockstepLink::Result::kStalled) {
+  const LockstepLink::Result result = lockstep_->exchange();
+  if (result == LockstepLink::Result::kPending) return;
+  if (result == LockstepLink::Result::kStalled) {
     if (state_ != msg::STATE_SAFE_HOLD) ++stalls_;
     state_ = msg::STATE_SAFE_HOLD;
     return;
   }
   state_ = msg::STATE_RUNNING;
   if (command_usable(lockstep_->command(), joints_)) {
-    command_torque(lockstep_->command(), sim_.q_rad(), sim_.dq_radps(), joints_, tau_cmd_);
+    command_torque(lockstep_->command(), sim_.q_rad(), joints_, tau_cmd_, damping_cmd_);
   } else {
     ++rejected_samples_;
     tau_cmd_.fill(0.0);
+    damping_cmd_.fill(0.0);
   }
-  sim_.step_torque(tau_cmd_);
+  sim_.step_torque(tau_cmd_, damping_cmd_);
   render_feedback(true);
   record_trajectory();
   if (config_.lockstep.steps > 0 && lockstep_->steps() >= config_.lockstep.steps) runtime::request_shutdown();
@@ -249,6 +254,7 @@ void TwinNode::fill_report(runtime::NodeReport& report) const {
   report.counters.emplace_back("peak_contact_force_n", peak_contact_force_n_);
   report.counters.emplace_back("min_distance_m", min_distance_m_);
   report.counters.emplace_back("rejected_samples", static_cast<double>(rejected_samples_));
+  report.counters.emplace_back("mujoco_warnings", static_cast<double>(sim_.warnings()));
   if (lockstep_) {
     report.add(lockstep_->state_publication());
     report.add(lockstep_->command_subscription());

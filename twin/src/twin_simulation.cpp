@@ -18,6 +18,7 @@ std::string margin_attributes() {
 }
 
 int substeps_of(const mjModel* m, double period_s, const std::string& path) {
+  if (period_s <= 0) return 1;
   const double steps = period_s / m->opt.timestep;
   const int n = static_cast<int>(std::lround(steps));
   if (n < 1 || std::abs(steps - n) > 1e-6) {
@@ -89,11 +90,10 @@ void TwinSimulation::advance(TorqueLaw&& law) {
   read_back();
 }
 
-void TwinSimulation::set_coupling_damping(double damping_nms_per_rad) {
+void TwinSimulation::set_joint_damping(const JointVector& damping_nms_per_rad) {
   mjModel* m = sim_.model();
   for (size_t i = 0; i < joints_.count; ++i) {
-    const size_t dof = static_cast<size_t>(joints_.dof[i]);
-    m->dof_damping[dof] = model_damping_[i] + damping_nms_per_rad;
+    m->dof_damping[joints_.dof[i]] = model_damping_[i] + damping_nms_per_rad[i];
   }
 }
 
@@ -102,14 +102,19 @@ void TwinSimulation::step_coupled(const JointVector& q_coupled_rad) {
   const double c = config_.coupling_damping_nms_per_rad;
   // eq. 2's damping term as joint damping, which MuJoCo's Euler integrator treats implicitly:
   // stable for stiff couplings on light wrist links where an explicit -D dq is not
-  set_coupling_damping(c);
+  JointVector damping;
+  damping.fill(c);
+  set_joint_damping(damping);
   advance([&](size_t i, double q, double) { return k * (q_coupled_rad[i] - q); });
   for (size_t i = 0; i < joints_.count; ++i) tau_[i] -= c * dq_[i];
 }
 
-void TwinSimulation::step_torque(const JointVector& tau_nm) {
-  set_coupling_damping(0.0);
+void TwinSimulation::step_torque(const JointVector& tau_nm) { step_torque(tau_nm, JointVector{}); }
+
+void TwinSimulation::step_torque(const JointVector& tau_nm, const JointVector& damping_nms_per_rad) {
+  set_joint_damping(damping_nms_per_rad);
   advance([&](size_t i, double, double) { return tau_nm[i]; });
+  for (size_t i = 0; i < joints_.count; ++i) tau_[i] -= damping_nms_per_rad[i] * dq_[i];
 }
 
 void TwinSimulation::set_state(const JointVector& q_rad, const JointVector& dq_radps) {

@@ -11,8 +11,9 @@ namespace teleop::twin {
 /// True when every sequence the law reads has `joints` entries and all of them are finite.
 [[nodiscard]] bool command_usable(const msg::JointCommand& cmd, size_t joints);
 
-/// The law's torque for the current state. Real-time safe; `cmd` must be usable.
-void command_torque(const msg::JointCommand& cmd, const JointVector& q_rad, const JointVector& dq_radps, size_t joints,
-                    JointVector& tau_nm);
+/// The law split for a simulation that damps implicitly: `tau_nm` = K (q_des - q) + D dq_des +
+/// tau_ff and `damping` = D, the -D dq term left to the integrator. Real-time safe; `cmd` must be usable.
+void command_torque(const msg::JointCommand& cmd, const JointVector& q_rad, size_t joints, JointVector& tau_nm,
+                    JointVector& damping);
 
 }  // namespace teleop::twin

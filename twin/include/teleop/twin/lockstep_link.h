@@ -14,16 +14,23 @@ namespace teleop::twin {
 class LockstepLink {
  public:
   /// Setup time: creates the reliable writer and reader.
-  LockstepLink(transport::Participant& participant, const std::string& node_name, size_t joints, double timeout_s);
+  /// `max_wait_s`: the longest one exchange() blocks (a loop period, so the node's status keeps
+  /// flowing while it waits).
+  LockstepLink(transport::Participant& participant, const std::string& node_name, size_t joints, double timeout_s,
+               double max_wait_s);
 
   /// Both directions matched with a controller.
   bool connected() const;
   /// The state to fill before exchange().
   msg::JointState& state() { return state_.sample(); }
 
-  enum class Result { kCommand, kStalled };
+  enum class Result {
+    kCommand,  ///< the command of the current step is there: step now
+    kPending,  ///< not yet, within the timeout: call again next cycle
+    kStalled,  ///< not within the timeout since the state went out
+  };
   /// Sends the state of the next step (unless it already went out and is still unanswered) and
-  /// waits up to the timeout for the command of that step. Blocks by design, bounded.
+  /// waits up to `max_wait_s` for the command of that step.
   [[nodiscard]] Result exchange();
   /// The command of the current step (valid after kCommand).
   const msg::JointCommand& command() const { return command_.latest(); }
@@ -39,6 +46,8 @@ class LockstepLink {
   transport::Publication<msg::JointState> state_;
   transport::Subscription<msg::JointCommand> command_;
   int64_t timeout_ns_;
+  int64_t max_wait_ns_;
+  int64_t sent_ns_ = 0;
   uint64_t answered_ = 0;
   bool awaiting_ = false;
 };

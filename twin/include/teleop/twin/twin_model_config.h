@@ -37,7 +37,7 @@ struct TwinModelConfig {
   std::string model_path;
   /// Start pose ("" = the model's default state).
   std::string keyframe;
-  /// Control period; the model's timestep must divide it.
+  /// Control period; the model's timestep must divide it. 0: one timestep (lock-step).
   double period_s = 0.001;
   /// K and D of PARTI eq. 2, per coupled joint.
   double coupling_stiffness_nm_per_rad = 300.0;

@@ -64,6 +64,7 @@ class TwinNode final : public runtime::NodeLogic {
   JointVector q_coupled_{};
   JointVector dq_coupled_{};
   JointVector tau_cmd_{};
+  JointVector damping_cmd_{};
   JointVector feedback_nm_{};
   int64_t first_cycle_ns_ = -1;
   int64_t last_cycle_ns_ = 0;

@@ -34,6 +34,9 @@ class TwinSimulation {
   void step_coupled(const JointVector& q_coupled_rad);
   /// One control period with `tau_nm` on the driven joints. Real-time safe.
   void step_torque(const JointVector& tau_nm);
+  /// The same plus -damping * dq, integrated implicitly (as joint damping: stable for stiff
+  /// gains on light links where an explicit damping torque is not). Real-time safe.
+  void step_torque(const JointVector& tau_nm, const JointVector& damping_nms_per_rad);
   /// Hardware in the loop: the driven joints take the measured state, everything derived is
   /// recomputed (mj_forward), nothing is integrated. Real-time safe.
   void set_state(const JointVector& q_rad, const JointVector& dq_radps);
@@ -46,6 +49,13 @@ class TwinSimulation {
   /// Constraint torque on the driven joints from the last step (what eq. 3 renders).
   const JointVector& constraint_torque_nm() const { return constraint_; }
   double time_s() const { return sim_.data()->time; }
+  /// MuJoCo warnings raised so far (instability, contact or constraint buffers full, ...): any
+  /// is a fault of the run.
+  int warnings() const {
+    int n = 0;
+    for (const mjWarningStat& w : sim_.data()->warning) n += w.number;
+    return n;
+  }
   int substeps() const { return substeps_; }
 
   const PairObserver& contact_pairs() const { return contacts_; }
@@ -62,7 +72,7 @@ class TwinSimulation {
   template <typename TorqueLaw>
   void advance(TorqueLaw&& law);
   void read_back();
-  void set_coupling_damping(double damping_nms_per_rad);
+  void set_joint_damping(const JointVector& damping_nms_per_rad);
 
   TwinModelConfig config_;
   sim::MujocoModel sim_;
