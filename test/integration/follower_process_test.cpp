@@ -33,29 +33,12 @@ struct Pair {
   }
   // the shipped leader, but moving joints that swing the flange along the wall, not into it
   std::string leader_clear_of_the_wall() const {
-    std::string text = read_file(source("config/nodes/leader.yaml"));
-    const std::string from = "amplitudes_rad: [0.0, 0.2, 0.0, 0.2, 0.0, 0.0, 0.0]";
-    const auto at = text.find(from);
-    EXPECT_NE(at, std::string::npos) << "leader.yaml changed: update this test";
-    text.replace(at, from.size(), "amplitudes_rad: [0.3, 0.0, 0.0, 0.0, 0.3, 0.0, 0.3]");
-    const std::string path = dir + "/leader.yaml";
-    write_file(path, text);
-    return path;
+    return config_copy(dir, "leader.yaml",
+                       {{"amplitudes_rad: [0.0, 0.2, 0.0, 0.2, 0.0, 0.0, 0.0]", "amplitudes_rad: [0.3, 0.0, 0.0, 0.0, 0.3, 0.0, 0.3]"}});
   }
   // the shipped follower with a command timeout longer than the leader's liveliness lease
   std::string follower_with_long_timeout() const {
-    std::string text = read_file(source("config/nodes/follower.yaml"));
-    const std::string from = "command_timeout_ms: 20";
-    const auto at = text.find(from);
-    EXPECT_NE(at, std::string::npos) << "follower.yaml changed: update this test";
-    text.replace(at, from.size(), "command_timeout_ms: 5000");
-    // the model paths are relative to config/nodes; the copy lives elsewhere
-    for (std::string::size_type p = 0; (p = text.find("../models/", p)) != std::string::npos;) {
-      text.replace(p, 10, source("config/models/"));
-    }
-    const std::string path = dir + "/follower.yaml.in";
-    write_file(path, text);
-    return path;
+    return config_copy(dir, "follower.yaml", {{"command_timeout_ms: 20", "command_timeout_ms: 5000"}});
   }
 };
 

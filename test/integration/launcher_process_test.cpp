@@ -17,7 +17,7 @@ TEST(LauncherProcess, RejectsABadScenarioNamingFileAndKey) {
 
 TEST(LauncherProcess, FailsAndStopsTheOthersWhenANodeCannotStart) {
   const std::string dir = make_temp_dir();
-  write_file(dir + "/bad.yaml", read_file(source("config/nodes/leader.yaml")) + "bogus_section: 1\n");
+  write_file(dir + "/bad.yaml", read_file(config_copy(dir, "leader.yaml", {})) + "bogus_section: 1\n");
   write_file(dir + "/s.yaml", "scenario:\n  name: failing\n  duration_s: 20\nnodes:\n"
                               "  - {name: follower, executable: teleop_follower, config: " +
                                   source("config/nodes/follower.yaml") +

@@ -88,4 +88,20 @@ std::optional<int> RunningProcess::stop(int sig, std::chrono::seconds timeout) {
   return process_.try_wait();
 }
 
+std::string config_copy(const std::string& dir, const std::string& name,
+                        const std::vector<std::pair<std::string, std::string>>& edits) {
+  std::string text = read_file(source("config/nodes/" + name));
+  for (size_t at = text.find("../models/"); at != std::string::npos; at = text.find("../models/", at)) {
+    text.replace(at, 10, source("config/models/"));
+  }
+  for (const auto& [from, to] : edits) {
+    const size_t at = text.find(from);
+    if (at == std::string::npos) throw std::runtime_error(name + " changed: no '" + from + "'; update this test");
+    text.replace(at, from.size(), to);
+  }
+  const std::string path = dir + "/" + name;
+  write_file(path, text);
+  return path;
+}
+
 }  // namespace teleop::test

@@ -22,6 +22,10 @@ int unique_domain();
 std::string make_temp_dir();
 void write_file(const std::string& path, const std::string& text);
 std::string read_file(const std::string& path);
+/// A shipped node config (config/nodes/<name>) copied into `dir` with its model paths made
+/// absolute and each (from, to) edit applied once; throws when an edit's text is missing.
+std::string config_copy(const std::string& dir, const std::string& name,
+                        const std::vector<std::pair<std::string, std::string>>& edits);
 
 struct ProcessResult {
   std::optional<int> exit_status;  ///< nullopt: still running at the timeout, then killed

@@ -15,23 +15,6 @@
 namespace teleop::test {
 namespace {
 
-// a shipped node config, copied with its model paths made absolute and `edits` applied
-std::string config_copy(const std::string& dir, const std::string& name,
-                        const std::vector<std::pair<std::string, std::string>>& edits) {
-  std::string text = read_file(source("config/nodes/" + name));
-  for (size_t at = text.find("../models/"); at != std::string::npos; at = text.find("../models/", at)) {
-    text.replace(at, 10, source("config/models/"));
-  }
-  for (const auto& [from, to] : edits) {
-    const size_t at = text.find(from);
-    if (at == std::string::npos) throw std::runtime_error(name + " changed: no '" + from + "'; update this test");
-    text.replace(at, from.size(), to);
-  }
-  const std::string path = dir + "/" + name;
-  write_file(path, text);
-  return path;
-}
-
 double counter(const runtime::NodeReport& r, const std::string& name) {
   for (const auto& [key, value] : r.counters) {
     if (key == name) return value;
