@@ -35,12 +35,12 @@ domain_max=${BASH_REMATCH[2]}
 
 # what each role may do; topic names as in transport/include/teleop/transport/topics.h
 status=teleop/node_status
-leader_publish="teleop/leader/joint_command teleop/leader/joint_state teleop/hand/command teleop/tdpa/leader_to_follower $status"
-leader_subscribe="teleop/follower/joint_state teleop/follower/wrench teleop/twin/feedback_torque teleop/twin/joint_state teleop/hand/state teleop/tdpa/follower_to_leader $status"
-follower_publish="teleop/follower/joint_state teleop/follower/wrench teleop/hand/state teleop/tdpa/follower_to_leader $status"
-follower_subscribe="teleop/leader/joint_command teleop/hand/command teleop/tdpa/leader_to_follower $status"
-twin_publish="teleop/twin/feedback_torque teleop/twin/joint_state $status"
-twin_subscribe="teleop/leader/joint_state teleop/follower/joint_state $status"
+leader_publish="teleop/leader/joint_command teleop/leader/cartesian_command teleop/leader/joint_state teleop/hand/command teleop/tdpa/leader_to_follower $status"
+leader_subscribe="teleop/follower/joint_state teleop/follower/wrench teleop/twin/feedback_torque teleop/twin/joint_state teleop/twin/contact_wrench/* teleop/twin/distances teleop/hand/state teleop/hand/joint_state teleop/tdpa/follower_to_leader $status"
+follower_publish="teleop/follower/joint_state teleop/follower/wrench teleop/hand/state teleop/hand/joint_state teleop/tdpa/follower_to_leader $status"
+follower_subscribe="teleop/leader/joint_command teleop/leader/cartesian_command teleop/twin/joint_command teleop/hand/command teleop/tdpa/leader_to_follower $status"
+twin_publish="teleop/twin/feedback_torque teleop/twin/joint_state teleop/twin/joint_command teleop/twin/contact_wrench/* teleop/twin/distances teleop/lockstep/state $status"
+twin_subscribe="teleop/leader/joint_state teleop/follower/joint_state teleop/hand/state teleop/lockstep/command $status"
 bench_echo_publish="teleop/follower/joint_state"
 bench_echo_subscribe="teleop/leader/joint_state"
 nodes="leader follower twin"
@@ -74,7 +74,8 @@ sign() {
     -signer "$out/permissions_ca.pem" -inkey "$out/ca/permissions_ca_key.pem"
 }
 
-topics_xml() { for t in $1; do printf '              <topic>%s</topic>\n' "$t"; done; }
+# (no globbing: topic patterns such as teleop/twin/contact_wrench/* are for DDS, not the shell)
+topics_xml() { set -f; for t in $1; do printf '              <topic>%s</topic>\n' "$t"; done; set +f; }
 
 write_governance() {
   cat >"$out/governance.xml" <<EOF
