@@ -11,6 +11,8 @@ packages=(
   can-utils iproute2
   # vcan HIL harness (test/vcan/run_in_vm.sh): a qemu VM with Debian's kernel and a busybox initramfs
   qemu-system-x86 busybox-static cpio
+  # libFuzzer target of the CAN frame decoders (test/can/fuzz): clang and its fuzzer runtime
+  clang libclang-rt-14-dev
 )
 
 missing=()
