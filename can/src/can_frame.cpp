@@ -39,7 +39,8 @@ const char* to_string(CanError error) {
 bool CanFrame::valid() const {
   if (dlc > kMaxDlc) return false;
   if ((flags & ~(kRtr | kExtended | kError)) != 0) return false;
-  if (error()) return id <= kMaxExtendedId;
+  // a controller error frame is its own kind: the extended and RTR bits mean nothing on it
+  if (error()) return flags == kError && id <= kMaxExtendedId;
   return id <= (extended() ? kMaxExtendedId : kMaxStandardId);
 }
 
@@ -78,7 +79,7 @@ Result<CanFrame> from_linux(const can_frame& frame) {
     if ((frame.can_id & CAN_EFF_MASK) > CAN_SFF_MASK) return CanError::kInvalidId;
     out.id = frame.can_id & CAN_SFF_MASK;
   }
-  if (frame.can_id & CAN_RTR_FLAG) out.flags |= CanFrame::kRtr;
+  if ((frame.can_id & CAN_RTR_FLAG) && !out.error()) out.flags |= CanFrame::kRtr;
   out.dlc = frame.len;
   std::memcpy(out.data.data(), frame.data, frame.len);
   return out;

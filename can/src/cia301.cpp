@@ -8,6 +8,8 @@ CanError check_data_frame(const CanFrame& frame) {
   if (frame.error()) return CanError::kErrorFrame;
   if (frame.extended()) return CanError::kExtendedFrame;
   if (frame.rtr()) return CanError::kRemoteFrame;
+  // flag bits the frame type does not have (never from SocketCAN; found by the fuzzer)
+  if ((frame.flags & ~(CanFrame::kRtr | CanFrame::kExtended | CanFrame::kError)) != 0) return CanError::kInvalidField;
   if (frame.dlc > CanFrame::kMaxDlc || frame.id > CanFrame::kMaxStandardId) return CanError::kInvalidDlc;
   return CanError::kNone;
 }

@@ -54,6 +54,18 @@ TEST(CanFrame, ConvertsExtendedRtrAndErrorFlagsToCanIdBits) {
   }
 }
 
+// found by the fuzzer: an error frame with the extended or RTR bit did not convert back to itself
+TEST(CanFrame, ErrorFrameCarriesNoOtherFlag) {
+  EXPECT_FALSE(frame(CAN_ERR_BUSOFF, {}, CanFrame::kError | CanFrame::kExtended).valid());
+  EXPECT_FALSE(frame(CAN_ERR_BUSOFF, {}, CanFrame::kError | CanFrame::kRtr).valid());
+  EXPECT_EQ(to_linux(frame(CAN_ERR_BUSOFF, {}, CanFrame::kError | CanFrame::kExtended)).error(), CanError::kInvalidId);
+  can_frame err{};
+  err.can_id = CAN_ERR_FLAG | CAN_RTR_FLAG | CAN_ERR_RESTARTED;
+  const auto e = from_linux(err);
+  ASSERT_TRUE(e.ok());
+  EXPECT_EQ(e->flags, CanFrame::kError);
+}
+
 TEST(CanFrame, RejectsLinuxFrameWithLenAboveEight) {
   can_frame f{};
   f.can_id = 0x123;

@@ -77,6 +77,7 @@ TEST(Nmt, RejectsMalformedFrames) {
   EXPECT_EQ(decode_nmt(raw(0x000, {0x01, 0x01}, CanFrame::kRtr)).error(), CanError::kRemoteFrame);
   EXPECT_EQ(decode_nmt(raw(0x000, {0x01, 0x01}, CanFrame::kExtended)).error(), CanError::kExtendedFrame);
   EXPECT_EQ(decode_nmt(raw(0x000, {0x01, 0x01}, CanFrame::kError)).error(), CanError::kErrorFrame);
+  EXPECT_EQ(decode_nmt(raw(0x000, {0x01, 0x01}, 0x80)).error(), CanError::kInvalidField);  // unknown flag bit
   EXPECT_EQ(encode_nmt(NmtCommand::kStart, 128).error(), CanError::kInvalidNode);
   EXPECT_EQ(encode_nmt(static_cast<NmtCommand>(0x07), 1).error(), CanError::kInvalidCommand);
 }
