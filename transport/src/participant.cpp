@@ -1,15 +1,15 @@
 #include "teleop/transport/participant.h"
 
+#include <fastdds/rtps/attributes/ServerAttributes.h>
+#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
+#include <fastrtps/utils/IPLocator.h>
+#include <fastrtps/xmlparser/XMLProfileManager.h>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
 #include <fastdds/dds/publisher/DataWriterListener.hpp>
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
-#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
-#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
-#include <fastdds/rtps/attributes/ServerAttributes.h>
-#include <fastrtps/utils/IPLocator.h>
-#include <fastrtps/xmlparser/XMLProfileManager.h>
 
 #include <filesystem>
 #include <mutex>
@@ -184,9 +184,9 @@ Participant::Participant(const ParticipantConfig& config) : config_(config) {
   participant_ = factory->create_participant(static_cast<dds::DomainId_t>(config.domain_id),
                                              participant_qos(config, impairment_), discovery_listener_.get(), mask);
   if (participant_ == nullptr) {
-    throw std::runtime_error("DDS refused to create participant '" + config.name + "' in domain " +
-                             std::to_string(config.domain_id) +
-                             (config.security.enabled() ? " (security on: see the Fast DDS security errors above)" : ""));
+    throw std::runtime_error(
+        "DDS refused to create participant '" + config.name + "' in domain " + std::to_string(config.domain_id) +
+        (config.security.enabled() ? " (security on: see the Fast DDS security errors above)" : ""));
   }
   publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);

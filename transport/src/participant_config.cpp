@@ -47,7 +47,9 @@ void parse_discovery(const ConfigNode& section, ParticipantConfig& c) {
     return;
   }
   const std::string mode = discovery->get_choice("mode", {"multicast", "peers", "server"});
-  c.discovery = mode == "peers" ? DiscoveryMode::kPeers : mode == "server" ? DiscoveryMode::kServer : DiscoveryMode::kMulticast;
+  c.discovery = mode == "peers"    ? DiscoveryMode::kPeers
+                : mode == "server" ? DiscoveryMode::kServer
+                                   : DiscoveryMode::kMulticast;
   for (const auto& entry : discovery->get_node_list("servers")) {
     c.discovery_servers.push_back(parse_discovery_server(entry));
     for (size_t i = 0; i + 1 < c.discovery_servers.size(); ++i) {
