@@ -11,6 +11,7 @@
 #include <fastdds/dds/publisher/DataWriterListener.hpp>
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <mutex>
 #include <stdexcept>
@@ -135,6 +136,13 @@ dds::DomainParticipantQos participant_qos(const ParticipantConfig& config,
     // participant lease with blocking sends
     udp->non_blocking_send = true;
     for (const auto& itf : config.interface_whitelist) udp->interfaceWhiteList.push_back(itf);
+    // Fast DDS reaches an address of this host (a discovery server or a peer on it) through
+    // loopback: a whitelist without it made a server on the same host unreachable (found in
+    // test/netns). Loopback never leaves the host, so the whitelist still picks the networks.
+    const auto& whitelist = config.interface_whitelist;
+    if (!whitelist.empty() && std::find(whitelist.begin(), whitelist.end(), "127.0.0.1") == whitelist.end()) {
+      udp->interfaceWhiteList.push_back("127.0.0.1");
+    }
     if (engine) {
       qos.transport().user_transports.push_back(std::make_shared<impairment::ImpairingTransportDescriptor>(udp, engine));
     } else {
