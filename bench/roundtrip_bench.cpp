@@ -22,8 +22,8 @@
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/socket.h>
-#include <time.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <fastdds/rtps/common/SerializedPayload.h>
@@ -36,11 +36,11 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <iterator>
-#include <sstream>
 #include <functional>
+#include <iterator>
 #include <mutex>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -516,16 +516,18 @@ struct VariantResult {
   uint64_t overruns = 0;  // pacer, measured window only
   uint64_t skipped = 0;
   DurationHistogram lateness;  // release time - deadline, measured window only
-  int64_t cpu_ping_ns = 0;      // CPU time of the pinger in the measured window
-  int64_t cpu_echo_ns = -1;     // and of the echo (-1: unreadable)
+  int64_t cpu_ping_ns = 0;     // CPU time of the pinger in the measured window
+  int64_t cpu_echo_ns = -1;    // and of the echo (-1: unreadable)
 };
 
 std::vector<std::string> echo_args(Variant v, const Options& opt) {
   const double run_s = static_cast<double>(opt.warmup + opt.samples) / opt.rate_hz;
   // a hard upper bound on the echo's life even if the pinger vanished without a signal
   const double max_s = 2.0 * opt.timeout_s + 2.0 * run_s + 3.0 / opt.rate_hz + 30.0;
-  std::vector<std::string> args{"--role",   "echo", "--variant",     name_of(v),
-                                 "--domain", std::to_string(opt.domain), "--max-seconds", std::to_string(max_s)};
+  std::vector<std::string> args{"--role",        "echo",
+                                "--variant",     name_of(v),
+                                "--domain",      std::to_string(opt.domain),
+                                "--max-seconds", std::to_string(max_s)};
   if (!opt.pki.empty()) args.insert(args.end(), {"--pki", opt.pki});
   return args;
 }

@@ -17,8 +17,8 @@ namespace {
 constexpr int kLeaderHost = 0;
 constexpr int kFollowerHost = 1;
 constexpr int kTwinHost = 2;
-constexpr int kServerHost = 3;  // the primary discovery server
-constexpr int kBackupServerHost = 4;
+constexpr int kServerHost = 3;        // the primary discovery server
+constexpr int kBackupServerHost = kTwinHost;  // a client on its server's host
 
 // the follower's link is down from kCutAt for kCutFor, longer than the
 // participant lease (3 s), so the participants are dropped and must be discovered again
@@ -34,7 +34,7 @@ class DiscoveryNetns : public ::testing::Test {
     const std::string reason = netns_unavailable_reason();
     // never a silent pass or skip: without namespaces this test fails and says why
     ASSERT_TRUE(reason.empty()) << reason;
-    network_ = std::make_unique<NetnsNetwork>(5);
+    network_ = std::make_unique<NetnsNetwork>(4);
     nodes_ = std::make_unique<NetnsNodes>(*network_);
   }
 

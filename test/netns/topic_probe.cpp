@@ -54,8 +54,8 @@ int run(const std::string& config_path, int domain, double duration_s) {
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   if (publication) {
-    std::printf("publish %s: sent %llu, matched %d\n", kTopic.name, static_cast<unsigned long long>(publication->sent()),
-                publication->matched());
+    std::printf("publish %s: sent %llu, matched %d\n", kTopic.name,
+                static_cast<unsigned long long>(publication->sent()), publication->matched());
   }
   if (reader) std::printf("read %s: received %llu\n", kTopic.name, static_cast<unsigned long long>(received_count));
   return 0;

@@ -182,30 +182,32 @@ void expect_errors(const std::string& head, const std::vector<std::pair<std::str
 }
 
 TEST(ParseParticipantConfig, RejectsInconsistentDiscovery) {
-  expect_errors("transport:\n  domain_id: 0\n",
-                {{"  discovery:\n    mode: server\n",
-                  "node.yaml:4: transport.discovery.servers: mode server needs at least one server ({id, address, port})"},
-                 {"  discovery:\n    mode: peers\n",
-                  "node.yaml:4: transport.discovery.mode: mode peers needs transport.initial_peers (the hosts to announce "
-                  "to)"},
-                 {"  initial_peers: [10.0.0.2]\n  discovery:\n    mode: multicast\n",
-                  "node.yaml:3: transport.initial_peers: initial peers replace multicast and servers: set "
-                  "discovery.mode: peers"},
-                 {"  discovery:\n    mode: multicast\n    servers: [{id: 0, address: 10.0.0.1}]\n",
-                  "node.yaml:5: transport.discovery.servers: servers are only used with mode server, not multicast"},
-                 {"  discovery:\n    mode: broadcast\n",
-                  "node.yaml:4: transport.discovery.mode: 'broadcast' is not one of: multicast, peers, server"}});
+  expect_errors(
+      "transport:\n  domain_id: 0\n",
+      {{"  discovery:\n    mode: server\n",
+        "node.yaml:4: transport.discovery.servers: mode server needs at least one server ({id, address, port})"},
+       {"  discovery:\n    mode: peers\n",
+        "node.yaml:4: transport.discovery.mode: mode peers needs transport.initial_peers (the hosts to announce "
+        "to)"},
+       {"  initial_peers: [10.0.0.2]\n  discovery:\n    mode: multicast\n",
+        "node.yaml:3: transport.initial_peers: initial peers replace multicast and servers: set "
+        "discovery.mode: peers"},
+       {"  discovery:\n    mode: multicast\n    servers: [{id: 0, address: 10.0.0.1}]\n",
+        "node.yaml:5: transport.discovery.servers: servers are only used with mode server, not multicast"},
+       {"  discovery:\n    mode: broadcast\n",
+        "node.yaml:4: transport.discovery.mode: 'broadcast' is not one of: multicast, peers, server"}});
 }
 
 TEST(ParseParticipantConfig, RejectsBadDiscoveryServer) {
-  expect_errors("transport:\n  domain_id: 0\n  discovery:\n    mode: server\n    servers:\n",
-                {{"      - {id: 0, address: server.lan}\n",
-                  "node.yaml:6: transport.discovery.servers[0].address: 'server.lan' is not an IPv4 address"},
-                 {"      - {id: 256, address: 10.0.0.1}\n",
-                  "node.yaml:6: transport.discovery.servers[0].id: value 256 is out of range [0, 255]"},
-                 {"      - {id: 1, address: 10.0.0.1}\n      - {id: 1, address: 10.0.0.2}\n",
-                  "node.yaml:7: transport.discovery.servers[1].id: server id 1 is listed twice"},
-                 {"      - {address: 10.0.0.1}\n", "node.yaml:6: transport.discovery.servers[0].id: missing required key"}});
+  expect_errors(
+      "transport:\n  domain_id: 0\n  discovery:\n    mode: server\n    servers:\n",
+      {{"      - {id: 0, address: server.lan}\n",
+        "node.yaml:6: transport.discovery.servers[0].address: 'server.lan' is not an IPv4 address"},
+       {"      - {id: 256, address: 10.0.0.1}\n",
+        "node.yaml:6: transport.discovery.servers[0].id: value 256 is out of range [0, 255]"},
+       {"      - {id: 1, address: 10.0.0.1}\n      - {id: 1, address: 10.0.0.2}\n",
+        "node.yaml:7: transport.discovery.servers[1].id: server id 1 is listed twice"},
+       {"      - {address: 10.0.0.1}\n", "node.yaml:6: transport.discovery.servers[0].id: missing required key"}});
 }
 
 TEST(ParseParticipantConfig, SecurityIsOffWithoutItsSection) {
@@ -213,8 +215,7 @@ TEST(ParseParticipantConfig, SecurityIsOffWithoutItsSection) {
 }
 
 TEST(ParseParticipantConfig, NamesTheMissingSecurityFile) {
-  const std::string error = error_of(
-      "transport:\n  domain_id: 0\n  security:\n    identity_ca: /nonexistent/ca.pem\n");
+  const std::string error = error_of("transport:\n  domain_id: 0\n  security:\n    identity_ca: /nonexistent/ca.pem\n");
   EXPECT_EQ(error, "node.yaml:4: transport.security.identity_ca: no file /nonexistent/ca.pem");
 }
 

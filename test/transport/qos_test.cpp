@@ -86,7 +86,8 @@ TEST(Qos, EveryPresetCarriesLivelinessWithConfiguredLease) {
     const dds::DataReaderQos r = reader_qos(preset, config());
     // streams: asserted per writer by its writes (see qos.cpp: Fast DDS 2.9 automatic liveliness
     // is not tracked per participant); states: automatic
-    const auto kind = preset == QosPreset::kStream ? dds::MANUAL_BY_TOPIC_LIVELINESS_QOS : dds::AUTOMATIC_LIVELINESS_QOS;
+    const auto kind =
+        preset == QosPreset::kStream ? dds::MANUAL_BY_TOPIC_LIVELINESS_QOS : dds::AUTOMATIC_LIVELINESS_QOS;
     EXPECT_EQ(w.liveliness().kind, kind) << to_string(preset);
     EXPECT_EQ(r.liveliness().kind, kind) << to_string(preset);
     EXPECT_EQ(ns_of(w.liveliness().lease_duration), 1'250'000'000) << to_string(preset);

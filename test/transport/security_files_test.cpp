@@ -16,8 +16,8 @@ class SecurityFiles : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new std::string(test::make_temp_dir());
-    const auto r = test::run_process({"/bin/bash", test::source("scripts/make_pki.sh"), *dir_ + "/pki"},
-                                     std::chrono::seconds(60));
+    const auto r =
+        test::run_process({"/bin/bash", test::source("scripts/make_pki.sh"), *dir_ + "/pki"}, std::chrono::seconds(60));
     ASSERT_EQ(r.exit_status, 0) << r.output;
   }
   static void TearDownTestSuite() {
@@ -27,8 +27,9 @@ class SecurityFiles : public ::testing::Test {
 
   static SecurityConfig config_of(const std::string& node) {
     const std::string pki = *dir_ + "/pki";
-    return {pki + "/identity_ca.pem", pki + "/" + node + "/identity.pem", pki + "/" + node + "/key.pem",
-            pki + "/permissions_ca.pem", pki + "/governance.p7s", pki + "/" + node + "/permissions.p7s"};
+    return {pki + "/identity_ca.pem",      pki + "/" + node + "/identity.pem",
+            pki + "/" + node + "/key.pem", pki + "/permissions_ca.pem",
+            pki + "/governance.p7s",       pki + "/" + node + "/permissions.p7s"};
   }
 
   static std::string error_of(const SecurityConfig& c) {
@@ -46,7 +47,8 @@ class SecurityFiles : public ::testing::Test {
 std::string* SecurityFiles::dir_ = nullptr;
 
 TEST_F(SecurityFiles, AcceptsEveryNodeOfTheMadePki) {
-  for (const char* node : {"leader", "follower", "twin"}) EXPECT_NO_THROW(verify_security_files(config_of(node))) << node;
+  for (const char* node : {"leader", "follower", "twin"})
+    EXPECT_NO_THROW(verify_security_files(config_of(node))) << node;
 }
 
 TEST_F(SecurityFiles, NamesAPrivateKeyOfAnotherNode) {
@@ -65,10 +67,10 @@ TEST_F(SecurityFiles, NamesATamperedGovernance) {
   text.replace(text.find(rule), rule.size(), "<data_protection_kind>NONE</data_protection_kind>");
   test::write_file(copy, text);
   c.governance = copy;
-  EXPECT_EQ(error_of(c).rfind("security.governance " + copy + ": signature does not verify against permissions_ca " +
-                                  c.permissions_ca,
-                              0),
-            0u)
+  EXPECT_EQ(
+      error_of(c).rfind(
+          "security.governance " + copy + ": signature does not verify against permissions_ca " + c.permissions_ca, 0),
+      0u)
       << error_of(c);
 }
 

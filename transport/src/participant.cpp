@@ -1,16 +1,17 @@
 #include "teleop/transport/participant.h"
 
+#include <fastdds/rtps/attributes/ServerAttributes.h>
+#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
+#include <fastrtps/utils/IPLocator.h>
+#include <fastrtps/xmlparser/XMLProfileManager.h>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
 #include <fastdds/dds/publisher/DataWriterListener.hpp>
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
-#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
-#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
-#include <fastdds/rtps/attributes/ServerAttributes.h>
-#include <fastrtps/utils/IPLocator.h>
-#include <fastrtps/xmlparser/XMLProfileManager.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <mutex>
 #include <stdexcept>
@@ -135,6 +136,13 @@ dds::DomainParticipantQos participant_qos(const ParticipantConfig& config,
     // participant lease with blocking sends
     udp->non_blocking_send = true;
     for (const auto& itf : config.interface_whitelist) udp->interfaceWhiteList.push_back(itf);
+    // Fast DDS reaches an address of this host (a discovery server or a peer on it) through
+    // loopback: a whitelist without it made a server on the same host unreachable (found in
+    // test/netns). Loopback never leaves the host, so the whitelist still picks the networks.
+    const auto& whitelist = config.interface_whitelist;
+    if (!whitelist.empty() && std::find(whitelist.begin(), whitelist.end(), "127.0.0.1") == whitelist.end()) {
+      udp->interfaceWhiteList.push_back("127.0.0.1");
+    }
     if (engine) {
       qos.transport().user_transports.push_back(std::make_shared<impairment::ImpairingTransportDescriptor>(udp, engine));
     } else {
@@ -184,9 +192,9 @@ Participant::Participant(const ParticipantConfig& config) : config_(config) {
   participant_ = factory->create_participant(static_cast<dds::DomainId_t>(config.domain_id),
                                              participant_qos(config, impairment_), discovery_listener_.get(), mask);
   if (participant_ == nullptr) {
-    throw std::runtime_error("DDS refused to create participant '" + config.name + "' in domain " +
-                             std::to_string(config.domain_id) +
-                             (config.security.enabled() ? " (security on: see the Fast DDS security errors above)" : ""));
+    throw std::runtime_error(
+        "DDS refused to create participant '" + config.name + "' in domain " + std::to_string(config.domain_id) +
+        (config.security.enabled() ? " (security on: see the Fast DDS security errors above)" : ""));
   }
   publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);

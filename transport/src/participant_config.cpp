@@ -2,6 +2,8 @@
 
 #include <arpa/inet.h>
 
+#include <iterator>
+
 namespace teleop::transport {
 namespace {
 
@@ -39,6 +41,45 @@ DiscoveryServer parse_discovery_server(const ConfigNode& entry) {
   return server;
 }
 
+DiscoveryMode parse_mode(const ConfigNode& discovery) {
+  const std::string mode = discovery.get_choice("mode", {std::begin(kModeNames), std::end(kModeNames)});
+  int index = 0;
+  while (mode != kModeNames[index]) ++index;
+  return static_cast<DiscoveryMode>(index);
+}
+
+std::vector<DiscoveryServer> parse_servers(const ConfigNode& discovery) {
+  std::vector<DiscoveryServer> servers;
+  for (const auto& entry : discovery.get_node_list("servers")) {
+    const DiscoveryServer server = parse_discovery_server(entry);
+    for (const auto& earlier : servers) {
+      if (earlier.id == server.id)
+        throw entry.error("id", "server id " + std::to_string(server.id) + " is listed twice");
+    }
+    servers.push_back(server);
+  }
+  return servers;
+}
+
+// each mode uses its own list and no other
+void check_discovery(const ConfigNode& section, const ConfigNode& discovery, const ParticipantConfig& c) {
+  const bool server = c.discovery == DiscoveryMode::kServer;
+  const bool peers = c.discovery == DiscoveryMode::kPeers;
+  if (server && c.discovery_servers.empty()) {
+    throw discovery.error("servers", "mode server needs at least one server ({id, address, port})");
+  }
+  if (!server && !c.discovery_servers.empty()) {
+    throw discovery.error(
+        "servers", std::string("servers are only used with mode server, not ") + discovery_mode_name(c.discovery));
+  }
+  if (peers && c.initial_peers.empty()) {
+    throw discovery.error("mode", "mode peers needs transport.initial_peers (the hosts to announce to)");
+  }
+  if (!peers && !c.initial_peers.empty()) {
+    throw section.error("initial_peers", "initial peers replace multicast and servers: set discovery.mode: peers");
+  }
+}
+
 // `discovery:` (optional): without it, listed initial peers mean unicast discovery to them
 void parse_discovery(const ConfigNode& section, ParticipantConfig& c) {
   const auto discovery = section.optional_child("discovery");
@@ -46,28 +87,9 @@ void parse_discovery(const ConfigNode& section, ParticipantConfig& c) {
     c.discovery = c.initial_peers.empty() ? DiscoveryMode::kMulticast : DiscoveryMode::kPeers;
     return;
   }
-  const std::string mode = discovery->get_choice("mode", {"multicast", "peers", "server"});
-  c.discovery = mode == "peers" ? DiscoveryMode::kPeers : mode == "server" ? DiscoveryMode::kServer : DiscoveryMode::kMulticast;
-  for (const auto& entry : discovery->get_node_list("servers")) {
-    c.discovery_servers.push_back(parse_discovery_server(entry));
-    for (size_t i = 0; i + 1 < c.discovery_servers.size(); ++i) {
-      if (c.discovery_servers[i].id == c.discovery_servers.back().id) {
-        throw entry.error("id", "server id " + std::to_string(c.discovery_servers.back().id) + " is listed twice");
-      }
-    }
-  }
-  if (c.discovery == DiscoveryMode::kServer && c.discovery_servers.empty()) {
-    throw discovery->error("servers", "mode server needs at least one server ({id, address, port})");
-  }
-  if (c.discovery != DiscoveryMode::kServer && !c.discovery_servers.empty()) {
-    throw discovery->error("servers", "servers are only used with mode server, not " + mode);
-  }
-  if (c.discovery == DiscoveryMode::kPeers && c.initial_peers.empty()) {
-    throw discovery->error("mode", "mode peers needs transport.initial_peers (the hosts to announce to)");
-  }
-  if (c.discovery != DiscoveryMode::kPeers && !c.initial_peers.empty()) {
-    throw section.error("initial_peers", "initial peers replace multicast and servers: set discovery.mode: peers");
-  }
+  c.discovery = parse_mode(*discovery);
+  c.discovery_servers = parse_servers(*discovery);
+  check_discovery(section, *discovery, c);
 }
 
 // `security:` (optional): every file must exist; their contents are checked when the participant starts
@@ -107,8 +129,7 @@ ParticipantConfig parse_participant_config(const ConfigNode& section, const std:
   if (c.participant_lease_ns < c.liveliness_lease_ns) {
     throw section.error("participant_lease_ms", "must not be shorter than liveliness_lease_ms");
   }
-  c.stream_deadline_ns =
-      static_cast<int64_t>(section.get_double("stream_deadline_ms", Range{0.1, 60'000}, 5.0) * 1e6);
+  c.stream_deadline_ns = static_cast<int64_t>(section.get_double("stream_deadline_ms", Range{0.1, 60'000}, 5.0) * 1e6);
   c.security = parse_security(section);
   if (auto imp = section.optional_child("impairment")) c.impairment = impairment::parse_impairment_config(*imp);
   return c;

@@ -64,7 +64,8 @@ Certificate load_certificate(const File& file) {
 // a trust store holding only `ca`; any purpose, since the CAs here sign documents as well
 Store store_of(X509* ca) {
   Store store(X509_STORE_new());
-  if (!store || X509_STORE_add_cert(store.get(), ca) != 1 || X509_STORE_set_purpose(store.get(), X509_PURPOSE_ANY) != 1) {
+  if (!store || X509_STORE_add_cert(store.get(), ca) != 1 ||
+      X509_STORE_set_purpose(store.get(), X509_PURPOSE_ANY) != 1) {
     throw SecurityFileError("security: cannot build a certificate store: " + openssl_error());
   }
   return store;

@@ -55,7 +55,7 @@ struct ParticipantConfig {
   /// Discovery servers in order of preference (mode kServer): the first is the primary, the
   /// others back it up; the participant stays connected to all of them.
   std::vector<DiscoveryServer> discovery_servers;
-  /// Network interfaces (IPv4 addresses) UDP may use; empty = all.
+  /// Network interfaces (IPv4 addresses) UDP may use, loopback always added; empty = all.
   std::vector<std::string> interface_whitelist;
   /// A writer that stays silent longer than this is considered dead by its readers.
   int64_t liveliness_lease_ns = 250'000'000;
