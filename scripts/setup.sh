@@ -9,6 +9,8 @@ packages=(
   libmujoco-dev libqhull-dev libeigen3-dev libyaml-cpp-dev libspdlog-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   can-utils iproute2
+  # multi-host and security tests (test/netns): namespaces, the PKI script, packet capture
+  openssl libssl-dev tcpdump
   # vcan HIL harness (test/vcan/run_in_vm.sh): a qemu VM with Debian's kernel and a busybox initramfs
   qemu-system-x86 busybox-static cpio
 )

@@ -1,5 +1,7 @@
 #include "teleop/can/emulated_drive.h"
 
+#include "teleop/can/hand_drive_objects.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -50,6 +52,22 @@ constexpr ObjectEntry kObjects[] = {
     {od::kSoftwarePositionLimit, 0, 8, false, false, false},
     {od::kSoftwarePositionLimit, 1, 32, true, false, false},
     {od::kSoftwarePositionLimit, 2, 32, true, false, false},
+    // manufacturer objects (hand_drive_objects.h): gains, fault injection
+    {hand_od::kGains, 0, 8, false, false, false},
+    {hand_od::kGains, 1, 32, true, false, false},
+    {hand_od::kGains, 2, 32, true, false, false},
+    {hand_od::kGains, 3, 32, true, false, false},
+    {hand_od::kGains, 4, 32, true, false, false},
+    {hand_od::kGains, 5, 32, true, false, false},
+    {hand_od::kGains, 6, 32, true, false, false},
+    {hand_od::kGains, 7, 32, true, false, false},
+    {hand_od::kFaultInjection, 0, 8, false, false, false},
+    {hand_od::kFaultInjection, 1, 32, true, false, false},
+    {hand_od::kFaultInjection, 2, 32, true, false, false},
+    {hand_od::kFaultInjection, 3, 32, true, false, false},
+    {hand_od::kFaultInjection, 4, 32, true, false, false},
+    {hand_od::kFaultInjection, 5, 32, true, false, false},
+    {hand_od::kFaultInjection, 6, 32, true, false, false},
 };
 
 constexpr uint32_t kPdoInvalid = 0x80000000u;
@@ -102,6 +120,30 @@ int16_t saturate_int16(double v) {
 }
 
 uint32_t mask_to_bits(uint32_t value, unsigned bits) { return bits >= 32 ? value : value & ((1u << bits) - 1); }
+
+// the controller parameter behind a subindex of the gains object (nullptr: no such subindex);
+// Params is EmulatedControllerParams, const or not
+template <typename Params>
+auto gain_slot(Params& c, uint8_t subindex) -> decltype(&c.position_kp_a_per_rad) {
+  switch (subindex) {
+    case hand_od::gain::kPositionKp:
+      return &c.position_kp_a_per_rad;
+    case hand_od::gain::kPositionKi:
+      return &c.position_ki_a_per_rad_s;
+    case hand_od::gain::kPositionKd:
+      return &c.position_kd_a_s_per_rad;
+    case hand_od::gain::kIntegralLimit:
+      return &c.position_integral_limit_a;
+    case hand_od::gain::kMaxReferenceVelocity:
+      return &c.max_reference_velocity_radps;
+    case hand_od::gain::kCurrentKp:
+      return &c.current_kp_v_per_a;
+    case hand_od::gain::kCurrentKi:
+      return &c.current_ki_v_per_a_s;
+    default:
+      return nullptr;
+  }
+}
 
 }  // namespace
 
@@ -500,6 +542,10 @@ void EmulatedDrive::handle_sdo(const CanFrame& frame) {
     return;
   }
   if (request->type == SdoType::kAbort) return;  // nothing is in progress with expedited transfers
+  if (sdo_refused_ && index != hand_od::kFaultInjection) {
+    abort(sdo_abort::kLocalControl);
+    return;
+  }
 
   ObjectInfo info;
   uint32_t code = 0;
@@ -696,6 +742,10 @@ uint32_t EmulatedDrive::read_object(uint16_t index, uint8_t subindex, uint32_t& 
     case od::kTargetPosition:
       value = static_cast<uint32_t>(target_ticks_);
       return 0;
+    case hand_od::kGains:
+      return read_gain(subindex, value);
+    case hand_od::kFaultInjection:
+      return read_injection(subindex, value);
     case od::kSoftwarePositionLimit:
       switch (subindex) {
         case 0:
@@ -756,6 +806,10 @@ uint32_t EmulatedDrive::write_object(uint16_t index, uint8_t subindex, uint32_t 
     case od::kTargetPosition:
       target_ticks_ = static_cast<int32_t>(value);
       return 0;
+    case hand_od::kGains:
+      return write_gain(subindex, value);
+    case hand_od::kFaultInjection:
+      return write_injection(subindex, value);
     case od::kSoftwarePositionLimit:
       if (subindex == 1) limit_min_ticks_ = static_cast<int32_t>(value);
       if (subindex == 2) limit_max_ticks_ = static_cast<int32_t>(value);
@@ -764,6 +818,83 @@ uint32_t EmulatedDrive::write_object(uint16_t index, uint8_t subindex, uint32_t 
       break;
   }
   return sdo_abort::kReadOnly;
+}
+
+uint32_t EmulatedDrive::read_gain(uint8_t subindex, uint32_t& value) const {
+  if (subindex == 0) {
+    value = hand_od::gain::kCount;
+    return 0;
+  }
+  const double* slot = gain_slot(config_.control, subindex);
+  if (slot == nullptr) return sdo_abort::kNoSubindex;
+  value = hand_od::real32_bits(*slot);
+  return 0;
+}
+
+uint32_t EmulatedDrive::write_gain(uint8_t subindex, uint32_t value) {
+  double* slot = gain_slot(config_.control, subindex);
+  if (slot == nullptr) return sdo_abort::kReadOnly;
+  const double gain = hand_od::real32_value(value);
+  if (!std::isfinite(gain)) return sdo_abort::kInvalidValue;
+  if (gain < 0) return sdo_abort::kValueTooLow;
+  // the reference step limit must stay positive, or the reference could never move
+  if (subindex == hand_od::gain::kMaxReferenceVelocity && gain <= 0) return sdo_abort::kValueTooLow;
+  *slot = gain;
+  return 0;
+}
+
+uint32_t EmulatedDrive::read_injection(uint8_t subindex, uint32_t& value) const {
+  switch (subindex) {
+    case 0:
+      value = hand_od::inject::kCount;
+      return 0;
+    case hand_od::inject::kSuppressHeartbeat:
+      value = heartbeat_suppressed_ ? 1 : 0;
+      return 0;
+    case hand_od::inject::kRaiseFault:
+      value = error_code_;
+      return 0;
+    case hand_od::inject::kStall:
+      value = stalled_ ? 1 : 0;
+      return 0;
+    case hand_od::inject::kDropTpdos:
+      value = drop_tpdos_;
+      return 0;
+    case hand_od::inject::kRefuseSdo:
+      value = sdo_refused_ ? 1 : 0;
+      return 0;
+    case hand_od::inject::kDropRpdos:
+      value = drop_rpdos_;
+      return 0;
+    default:
+      return sdo_abort::kNoSubindex;
+  }
+}
+
+uint32_t EmulatedDrive::write_injection(uint8_t subindex, uint32_t value) {
+  switch (subindex) {
+    case hand_od::inject::kSuppressHeartbeat:
+      set_heartbeat_suppressed(value != 0);
+      return 0;
+    case hand_od::inject::kRaiseFault:
+      if (value == 0 || value > 0xFFFF) return sdo_abort::kInvalidValue;
+      raise_fault(static_cast<uint16_t>(value));
+      return 0;
+    case hand_od::inject::kStall:
+      set_stalled(value != 0);
+      return 0;
+    case hand_od::inject::kDropTpdos:
+      drop_tpdos(value);
+      return 0;
+    case hand_od::inject::kRefuseSdo:
+      set_sdo_refused(value != 0);
+      return 0;
+    case hand_od::inject::kDropRpdos:
+      drop_rpdos(value);
+      return 0;
+    default:
+      return sdo_abort::kReadOnly;
+  }
 }
 
 uint32_t EmulatedDrive::write_pdo_communication(PdoChannel& pdo, bool transmit, uint8_t subindex, uint32_t value) {

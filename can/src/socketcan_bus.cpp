@@ -53,6 +53,16 @@ std::vector<CanIdFilter> canopen_node_filters(uint8_t node) {
   return f;
 }
 
+std::vector<CanIdFilter> canopen_master_filters(std::span<const uint8_t> nodes) {
+  std::vector<CanIdFilter> f;
+  for (const uint8_t node : nodes) {
+    for (uint32_t base : {uint32_t{cob::kEmcy}, uint32_t{cob::kTpdo1}, uint32_t{cob::kSdoTx}, uint32_t{cob::kHeartbeat}}) {
+      f.push_back({base + node, 0x7FF, false});
+    }
+  }
+  return f;
+}
+
 SocketCanBus::SocketCanBus(const std::string& interface, const SocketCanOptions& options)
     : interface_(interface), options_(options) {
   if (interface.empty() || interface.size() >= IFNAMSIZ) {

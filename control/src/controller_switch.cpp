@@ -18,6 +18,11 @@ int ControllerSwitch::add(Controller& controller) {
 
 void ControllerSwitch::select(int mode) {
   if (mode < 0 || mode >= count_ || mode == to_) return;
+  if (!have_output_) {
+    // nothing has been commanded yet: there is no torque to blend from
+    from_ = to_ = mode;
+    return;
+  }
   if (blending() && have_output_) {
     need_offset_ = true;  // delta = last output - tau of the old target, taken at the next compute
   } else {

@@ -46,7 +46,7 @@ JointVector CartesianImpedance::compute(const ArmState& state, const ArmCommand&
   for (int i = 0; i < 6; ++i) d[i] = 2.0 * gains_.damping_ratio * std::sqrt(k[i] * std::max(lambda(i, i), 0.0));
 
   const Vector6 velocity = J * state.dq;
-  const Vector6 wrench = k.cwiseProduct(error_) - d.cwiseProduct(velocity);
+  const Vector6 wrench = k.cwiseProduct(error_) + d.cwiseProduct(command.twist_d - velocity);
 
   // N = I - J^T Lambda J M^-1; N tau0 = tau0 - J^T (Lambda (J (M^-1 tau0)))
   const JointVector tau0 =

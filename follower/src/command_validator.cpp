@@ -10,10 +10,14 @@ const char* to_string(CommandIssue issue) {
     case CommandIssue::kWrongSize: return "rejected_wrong_size";
     case CommandIssue::kNonFinite: return "rejected_non_finite";
     case CommandIssue::kSequenceOld: return "rejected_old_sequence";
+    case CommandIssue::kStale: return "rejected_stale";
+    case CommandIssue::kMixedModes: return "rejected_mixed_modes";
+    case CommandIssue::kBadOrientation: return "rejected_bad_orientation";
     case CommandIssue::kPositionLimit: return "clamped_position";
     case CommandIssue::kVelocityLimit: return "clamped_velocity";
     case CommandIssue::kGainLimit: return "clamped_gain";
     case CommandIssue::kTorqueLimit: return "clamped_torque";
+    case CommandIssue::kWorkspaceLimit: return "clamped_workspace";
     case CommandIssue::kCount: break;
   }
   return "?";
@@ -35,6 +39,27 @@ bool CommandValidator::all_finite(const msg::JointCommand& cmd) {
          finite(cmd.stiffness_nm_per_rad()) && finite(cmd.damping_nms_per_rad());
 }
 
+bool CommandValidator::all_finite(const msg::CartesianCommand& cmd) {
+  const auto finite = [](const msg::Vector3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); };
+  const auto& o = cmd.target_pose().orientation();
+  return finite(cmd.target_pose().position_m()) && std::isfinite(o.w()) && std::isfinite(o.x()) && std::isfinite(o.y()) &&
+         std::isfinite(o.z()) && finite(cmd.target_twist().linear_mps()) && finite(cmd.target_twist().angular_radps()) &&
+         finite(cmd.stiffness_translational_n_per_m()) && finite(cmd.stiffness_rotational_nm_per_rad()) &&
+         std::isfinite(cmd.damping_ratio()) && std::isfinite(cmd.nullspace_stiffness_nm_per_rad());
+}
+
+bool CommandValidator::stale(const msg::SampleHeader& header, int64_t now_system_ns) const {
+  if (limits_.max_command_age_s <= 0) return false;
+  const double age_s = static_cast<double>(now_system_ns - header.stamp_ns()) * 1e-9;
+  return std::abs(age_s) > limits_.max_command_age_s;
+}
+
+CommandVerdict CommandValidator::reject(CommandIssue reason) {
+  ++counts_[static_cast<size_t>(reason)];
+  ++rejected_;
+  return CommandVerdict::kRejected;
+}
+
 double CommandValidator::clamp_counted(double v, double lo, double hi, CommandIssue issue, bool& clamped) {
   if (v >= lo && v <= hi) return v;
   ++counts_[static_cast<size_t>(issue)];
@@ -42,31 +67,69 @@ double CommandValidator::clamp_counted(double v, double lo, double hi, CommandIs
   return std::clamp(v, lo, hi);
 }
 
-CommandVerdict CommandValidator::validate(const msg::JointCommand& cmd, ValidCommand& out) {
-  CommandIssue reject_reason = CommandIssue::kCount;
-  if (!sizes_ok(cmd)) {
-    reject_reason = CommandIssue::kWrongSize;
-  } else if (!all_finite(cmd)) {
-    reject_reason = CommandIssue::kNonFinite;
-  } else if (cmd.header().seq() <= last_seq_) {
-    reject_reason = CommandIssue::kSequenceOld;
+CommandVerdict CommandValidator::validate(const msg::JointCommand& cmd, int64_t now_system_ns, ValidCommand& out) {
+  if (!sizes_ok(cmd)) return reject(CommandIssue::kWrongSize);
+  if (!all_finite(cmd)) return reject(CommandIssue::kNonFinite);
+  if (cmd.header().seq() <= last_joint_seq_) return reject(CommandIssue::kSequenceOld);
+  if (stale(cmd.header(), now_system_ns)) return reject(CommandIssue::kStale);
+  const auto& modes = cmd.mode();
+  if (modes.empty() || modes[0] == msg::CONTROL_CARTESIAN_IMPEDANCE ||
+      std::any_of(modes.begin(), modes.end(), [&](msg::ControlMode m) { return m != modes[0]; })) {
+    // one controller runs the whole arm; Cartesian targets come as CartesianCommand
+    return reject(CommandIssue::kMixedModes);
   }
-  if (reject_reason != CommandIssue::kCount) {
-    ++counts_[static_cast<size_t>(reject_reason)];
-    ++rejected_;
-    return CommandVerdict::kRejected;
-  }
-  last_seq_ = cmd.header().seq();
+  last_joint_seq_ = cmd.header().seq();
+  out.mode = modes[0];
   bool clamped = false;
   const auto& l = limits_;
   for (size_t i = 0; i < joints_; ++i) {
     out.q_des_rad[i] = clamp_counted(cmd.q_des_rad()[i], l.q_min_rad[i], l.q_max_rad[i], CommandIssue::kPositionLimit, clamped);
     out.dq_des_radps[i] = clamp_counted(cmd.dq_des_radps()[i], -l.max_velocity_radps, l.max_velocity_radps,
                                         CommandIssue::kVelocityLimit, clamped);
-    out.tau_ff_nm[i] = clamp_counted(cmd.tau_ff_nm()[i], -l.max_torque_nm, l.max_torque_nm, CommandIssue::kTorqueLimit, clamped);
+    out.tau_ff_nm[i] =
+        clamp_counted(cmd.tau_ff_nm()[i], -l.max_torque_nm[i], l.max_torque_nm[i], CommandIssue::kTorqueLimit, clamped);
     out.stiffness[i] = clamp_counted(cmd.stiffness_nm_per_rad()[i], 0.0, l.max_stiffness_nm_per_rad, CommandIssue::kGainLimit, clamped);
     out.damping[i] = clamp_counted(cmd.damping_nms_per_rad()[i], 0.0, l.max_damping_nms_per_rad, CommandIssue::kGainLimit, clamped);
   }
+  return clamped ? CommandVerdict::kClamped : CommandVerdict::kAccepted;
+}
+
+CommandVerdict CommandValidator::validate(const msg::CartesianCommand& cmd, int64_t now_system_ns, ValidCommand& out) {
+  if (!all_finite(cmd)) return reject(CommandIssue::kNonFinite);
+  if (cmd.header().seq() <= last_cartesian_seq_) return reject(CommandIssue::kSequenceOld);
+  if (stale(cmd.header(), now_system_ns)) return reject(CommandIssue::kStale);
+  const auto& o = cmd.target_pose().orientation();
+  const double norm = std::sqrt(o.w() * o.w() + o.x() * o.x() + o.y() * o.y() + o.z() * o.z());
+  // a little off unit is rounding and gets normalised; far off is a bug at the sender
+  if (std::abs(norm - 1.0) > 0.01) return reject(CommandIssue::kBadOrientation);
+  last_cartesian_seq_ = cmd.header().seq();
+  out.mode = msg::CONTROL_CARTESIAN_IMPEDANCE;
+  out.orientation_wxyz = {o.w() / norm, o.x() / norm, o.y() / norm, o.z() / norm};
+
+  bool clamped = false;
+  const auto& l = limits_;
+  const auto& p = cmd.target_pose().position_m();
+  const std::array<double, 3> position{p.x(), p.y(), p.z()};
+  const auto& v = cmd.target_twist().linear_mps();
+  const auto& w = cmd.target_twist().angular_radps();
+  const std::array<double, 6> twist{v.x(), v.y(), v.z(), w.x(), w.y(), w.z()};
+  const auto& kt = cmd.stiffness_translational_n_per_m();
+  const auto& kr = cmd.stiffness_rotational_nm_per_rad();
+  const std::array<double, 3> k_trans{kt.x(), kt.y(), kt.z()};
+  const std::array<double, 3> k_rot{kr.x(), kr.y(), kr.z()};
+  for (size_t i = 0; i < 3; ++i) {
+    out.x_des_m[i] = clamp_counted(position[i], l.workspace_min_m[i], l.workspace_max_m[i], CommandIssue::kWorkspaceLimit, clamped);
+    out.twist_des[i] = clamp_counted(twist[i], -l.max_linear_velocity_mps, l.max_linear_velocity_mps, CommandIssue::kVelocityLimit, clamped);
+    out.twist_des[i + 3] =
+        clamp_counted(twist[i + 3], -l.max_angular_velocity_radps, l.max_angular_velocity_radps, CommandIssue::kVelocityLimit, clamped);
+    out.translational_stiffness_n_per_m[i] =
+        clamp_counted(k_trans[i], 0.0, l.max_translational_stiffness_n_per_m, CommandIssue::kGainLimit, clamped);
+    out.rotational_stiffness_nm_per_rad[i] =
+        clamp_counted(k_rot[i], 0.0, l.max_rotational_stiffness_nm_per_rad, CommandIssue::kGainLimit, clamped);
+  }
+  out.damping_ratio = clamp_counted(cmd.damping_ratio(), 0.1, 2.0, CommandIssue::kGainLimit, clamped);
+  out.nullspace_stiffness_nm_per_rad =
+      clamp_counted(cmd.nullspace_stiffness_nm_per_rad(), 0.0, l.max_nullspace_stiffness_nm_per_rad, CommandIssue::kGainLimit, clamped);
   return clamped ? CommandVerdict::kClamped : CommandVerdict::kAccepted;
 }
 

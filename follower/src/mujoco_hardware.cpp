@@ -1,7 +1,9 @@
 #include "teleop/follower/mujoco_hardware.h"
 
 #include <cmath>
+#include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -91,6 +93,25 @@ void MujocoHardware::compute_external_wrench(ArmState& state) const {
       state.torque_ext_nm[static_cast<size_t>(k)] += sign * moment[k];
     }
   }
+}
+
+HardwareLimits MujocoHardware::limits() const {
+  const mjModel* m = sim_.model();
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  HardwareLimits l;
+  for (size_t i = 0; i < joints_; ++i) {
+    const int a = actuator_[i];
+    const int joint = m->actuator_trnid[2 * a];
+    const bool limited = m->jnt_limited[joint] != 0;
+    l.q_min_rad[i] = limited ? m->jnt_range[2 * joint] : -kInf;
+    l.q_max_rad[i] = limited ? m->jnt_range[2 * joint + 1] : kInf;
+    // ctrl is the link-side torque (gear 1 motors); the gear scales it otherwise
+    const double gear = std::abs(m->actuator_gear[6 * a]);
+    l.max_torque_nm[i] = m->actuator_ctrllimited[a] != 0
+                             ? gear * std::max(std::abs(m->actuator_ctrlrange[2 * a]), std::abs(m->actuator_ctrlrange[2 * a + 1]))
+                             : kInf;
+  }
+  return l;
 }
 
 HardwareStatus MujocoHardware::read(ArmState& state) {

@@ -1,5 +1,6 @@
 #include "teleop/leader/scripted_leader.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "teleop/common/joint_config.h"
@@ -15,6 +16,7 @@ ScriptedLeaderConfig ScriptedLeader::parse_config(const ConfigNode& root) {
   const double amplitude = s.get_double("amplitude_rad", Range{0, M_PI}, 0.3);
   c.amplitude_rad = read_joint_list(s, "amplitudes_rad", c.joints, Range{0, M_PI}, amplitude);
   c.frequency_hz = s.get_double("frequency_hz", Range{0, 50}, c.frequency_hz);
+  c.ramp_s = s.get_double("ramp_s", Range{0, 60}, c.ramp_s);
   c.stiffness_nm_per_rad = s.get_double("stiffness_nm_per_rad", Range{0, 1e5}, c.stiffness_nm_per_rad);
   c.damping_nms_per_rad = s.get_double("damping_nms_per_rad", Range{0, 1e4}, c.damping_nms_per_rad);
   c.peer_timeout_s = s.get_double("peer_timeout_ms", Range{1, 60'000}, 100) * 1e-3;
@@ -46,11 +48,16 @@ ScriptedLeader::ScriptedLeader(const ScriptedLeaderConfig& config, runtime::Node
 
 void ScriptedLeader::operator_motion(double t_s) {
   const double w = 2 * M_PI * config_.frequency_hz;
+  // the amplitude fades in (smoothstep over ramp_s), so the motion starts at home without a step
+  const double x = config_.ramp_s > 0 ? std::min(1.0, t_s / config_.ramp_s) : 1.0;
+  const double envelope = x * x * (3 - 2 * x);
+  const double envelope_rate = config_.ramp_s > 0 && x < 1.0 ? 6 * x * (1 - x) / config_.ramp_s : 0.0;
   for (size_t i = 0; i < config_.joints; ++i) {
     // each joint a little out of phase, so that the motion is not degenerate
     const double phase = 0.4 * static_cast<double>(i);
-    q_des_[i] = config_.home_rad[i] + config_.amplitude_rad[i] * std::sin(w * t_s + phase);
-    dq_des_[i] = config_.amplitude_rad[i] * w * std::cos(w * t_s + phase);
+    const double a = config_.amplitude_rad[i];
+    q_des_[i] = config_.home_rad[i] + envelope * a * std::sin(w * t_s + phase);
+    dq_des_[i] = envelope * a * w * std::cos(w * t_s + phase) + envelope_rate * a * std::sin(w * t_s + phase);
   }
 }
 

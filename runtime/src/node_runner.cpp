@@ -95,8 +95,10 @@ void run_loop(const NodeConfig& node, NodeLogic& logic, StatusPublisher& status,
 int run(const CommandLine& cli, const NodeDescription& description) {
   Setup setup = load_setup(cli, description);
   const NodeConfig& node = setup.node;
-  spdlog::info("{}: starting ({} Hz, domain {}, {}{})", node.name, node.rate_hz, setup.transport.domain_id,
-               setup.transport.udpv4 ? "udpv4 " : "", setup.transport.shm ? "shm" : "");
+  spdlog::info("{}: starting ({} Hz, domain {}, {}{}, discovery {}, security {})", node.name, node.rate_hz,
+               setup.transport.domain_id, setup.transport.udpv4 ? "udpv4" : "", setup.transport.shm ? " shm" : "",
+               transport::discovery_mode_name(setup.transport.discovery),
+               setup.transport.security.enabled() ? "on" : "off");
 
   NodeReport report;
   int64_t started_ns = monotonic_now_ns();

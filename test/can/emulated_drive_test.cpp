@@ -11,6 +11,7 @@
 
 #include "allocation_counter.h"
 #include "drive_rig.h"
+#include "teleop/can/hand_drive_objects.h"
 
 namespace teleop::can::test {
 namespace {
@@ -166,7 +167,7 @@ TEST(EmulatedDrive, SdoServerWritesAndReadsBack) {
 TEST(EmulatedDrive, SdoServerAbortsEveryRefusedAccess) {
   DriveRig rig;
   rig.run(1e-3);
-  EXPECT_EQ(abort_of(rig.sdo_read(0x2000, 0)), sdo_abort::kNoObject);
+  EXPECT_EQ(abort_of(rig.sdo_read(0x2100, 0)), sdo_abort::kNoObject);
   EXPECT_EQ(abort_of(rig.sdo_read(0x1018, 7)), sdo_abort::kNoSubindex);
   EXPECT_EQ(abort_of(rig.sdo_read(0x1800, 4)), sdo_abort::kNoSubindex);
   EXPECT_EQ(abort_of(rig.sdo_read(0x1400, 5)), sdo_abort::kNoSubindex);
@@ -272,6 +273,44 @@ TEST(EmulatedDrive, HardStopStallsTheLinkAtTheCurrentLimit) {
   EXPECT_TRUE(rig.last_feedback().statusword & cia402::sw::kInternalLimitActive);
   EXPECT_EQ(rig.drive().state(), State::kOperationEnabled);
   EXPECT_TRUE(emcys(rig).empty());
+}
+
+TEST(EmulatedDrive, GainsObjectWritesTheControllerAsReal32) {
+  DriveRig rig;
+  rig.run(1e-3);
+  rig.write(hand_od::kGains, hand_od::gain::kPositionKp, hand_od::real32_bits(12.5), 4);
+  EXPECT_DOUBLE_EQ(rig.drive().config().control.position_kp_a_per_rad, 12.5);
+  const auto r = rig.sdo_read(hand_od::kGains, hand_od::gain::kCurrentKi);
+  ASSERT_TRUE(r.ok());
+  EXPECT_FLOAT_EQ(static_cast<float>(hand_od::real32_value(r->data)), 12566.0f);
+  const auto negative = rig.sdo_write(hand_od::kGains, hand_od::gain::kPositionKi, hand_od::real32_bits(-1.0), 4);
+  ASSERT_TRUE(negative.ok());
+  EXPECT_EQ(negative->abort_code, sdo_abort::kValueTooLow);
+  const auto nan = rig.sdo_write(hand_od::kGains, hand_od::gain::kPositionKd, 0x7FC00000u, 4);
+  ASSERT_TRUE(nan.ok());
+  EXPECT_EQ(nan->abort_code, sdo_abort::kInvalidValue);
+  const auto missing = rig.sdo_read(hand_od::kGains, 8);
+  ASSERT_TRUE(missing.ok());
+  EXPECT_EQ(missing->abort_code, sdo_abort::kNoSubindex);
+}
+
+TEST(EmulatedDrive, FaultInjectionObjectActsLikeTheInjectionCalls) {
+  DriveRig rig;
+  rig.bring_up();
+  rig.write(hand_od::kFaultInjection, hand_od::inject::kSuppressHeartbeat, 1, 4);
+  rig.clear_received();
+  rig.run(0.3);
+  EXPECT_TRUE(rig.frames(0x700u + rig.node()).empty());
+  rig.write(hand_od::kFaultInjection, hand_od::inject::kSuppressHeartbeat, 0, 4);
+  rig.write(hand_od::kFaultInjection, hand_od::inject::kRefuseSdo, 1, 4);
+  const auto refused = rig.sdo_read(0x1000, 0);
+  ASSERT_TRUE(refused.ok());
+  EXPECT_EQ(refused->abort_code, sdo_abort::kLocalControl);
+  rig.write(hand_od::kFaultInjection, hand_od::inject::kRefuseSdo, 0, 4);
+  rig.write(hand_od::kFaultInjection, hand_od::inject::kRaiseFault, emcy::kOverCurrent, 4);
+  rig.run(0.01);
+  EXPECT_EQ(rig.drive().state(), State::kFault);
+  EXPECT_EQ(rig.drive().error_code(), emcy::kOverCurrent);
 }
 
 TEST(EmulatedDrive, RpdoTargetTakesEffectAtTheNextSync) {

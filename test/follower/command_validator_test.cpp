@@ -15,6 +15,8 @@ namespace {
 constexpr size_t kJoints = 3;
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// CLOCK_REALTIME "now" of the tests; commands are stamped with it unless a test says otherwise
+constexpr int64_t kNow = 1'700'000'000'000'000'000;
 
 JointLimits limits() {
   JointLimits l;
@@ -25,7 +27,7 @@ JointLimits limits() {
   l.max_velocity_radps = 2.0;
   l.max_stiffness_nm_per_rad = 500.0;
   l.max_damping_nms_per_rad = 50.0;
-  l.max_torque_nm = 10.0;
+  l.max_torque_nm = JointLimits::filled(10.0);
   return l;
 }
 
@@ -33,6 +35,7 @@ JointLimits limits() {
 msg::JointCommand valid_command(uint64_t seq) {
   msg::JointCommand c;
   c.header().seq(seq);
+  c.header().stamp_ns(kNow);
   c.robot("panda");
   c.arm("right");
   c.mode(std::vector<msg::ControlMode>(kJoints, msg::CONTROL_JOINT_IMPEDANCE));
@@ -101,7 +104,7 @@ TEST(CommandValidator, AcceptsValidCommandUnchanged) {
   CommandValidator v(kJoints, limits());
   const msg::JointCommand cmd = valid_command(1);
   ValidCommand out = marked();
-  EXPECT_EQ(v.validate(cmd, out), CommandVerdict::kAccepted);
+  EXPECT_EQ(v.validate(cmd, kNow, out), CommandVerdict::kAccepted);
   for (size_t i = 0; i < kJoints; ++i) {
     EXPECT_EQ(out.q_des_rad[i], cmd.q_des_rad()[i]);
     EXPECT_EQ(out.dq_des_radps[i], cmd.dq_des_radps()[i]);
@@ -122,7 +125,7 @@ TEST(CommandValidator, AcceptsValuesExactlyOnTheLimits) {
   cmd.stiffness_nm_per_rad({0.0, 500.0, 0.0});
   cmd.damping_nms_per_rad({50.0, 0.0, 50.0});
   ValidCommand out;
-  EXPECT_EQ(v.validate(cmd, out), CommandVerdict::kAccepted);
+  EXPECT_EQ(v.validate(cmd, kNow, out), CommandVerdict::kAccepted);
   EXPECT_EQ(total_count(v), 0u);
   EXPECT_EQ(out.q_des_rad[1], 1.1);
   EXPECT_EQ(out.dq_des_radps[1], -2.0);
@@ -138,7 +141,7 @@ TEST(CommandValidator, RejectsNanAndInfInEachFieldAndCountsThemAsNonFinite) {
         msg::JointCommand cmd = valid_command(++seq);
         f.get(cmd)[joint] = bad;
         ValidCommand out = marked();
-        EXPECT_EQ(v.validate(cmd, out), CommandVerdict::kRejected) << f.name << "[" << joint << "] = " << bad;
+        EXPECT_EQ(v.validate(cmd, kNow, out), CommandVerdict::kRejected) << f.name << "[" << joint << "] = " << bad;
         expect_untouched(out);
         ++expected_rejects;
         EXPECT_EQ(v.count(CommandIssue::kNonFinite), expected_rejects) << f.name;
@@ -158,7 +161,7 @@ TEST(CommandValidator, RejectsAndCountsWrongSequenceLengthInEachField) {
       msg::JointCommand cmd = valid_command(++seq);
       f.get(cmd).resize(size, 0.0);
       ValidCommand out = marked();
-      EXPECT_EQ(v.validate(cmd, out), CommandVerdict::kRejected) << f.name << " of size " << size;
+      EXPECT_EQ(v.validate(cmd, kNow, out), CommandVerdict::kRejected) << f.name << " of size " << size;
       expect_untouched(out);
       ++expected_rejects;
     }
@@ -168,7 +171,7 @@ TEST(CommandValidator, RejectsAndCountsWrongSequenceLengthInEachField) {
     msg::JointCommand cmd = valid_command(++seq);
     cmd.mode().resize(size, msg::CONTROL_GRAVITY);
     ValidCommand out;
-    EXPECT_EQ(v.validate(cmd, out), CommandVerdict::kRejected) << "mode of size " << size;
+    EXPECT_EQ(v.validate(cmd, kNow, out), CommandVerdict::kRejected) << "mode of size " << size;
     ++expected_rejects;
   }
   EXPECT_EQ(v.count(CommandIssue::kWrongSize), expected_rejects);
@@ -181,7 +184,7 @@ TEST(CommandValidator, CountsWrongSizeBeforeNonFiniteWhenBothApply) {
   msg::JointCommand cmd = valid_command(1);
   cmd.q_des_rad({kNan});
   ValidCommand out;
-  EXPECT_EQ(v.validate(cmd, out), CommandVerdict::kRejected);
+  EXPECT_EQ(v.validate(cmd, kNow, out), CommandVerdict::kRejected);
   EXPECT_EQ(v.count(CommandIssue::kWrongSize), 1u);
   EXPECT_EQ(v.count(CommandIssue::kNonFinite), 0u);
 }
@@ -189,21 +192,21 @@ TEST(CommandValidator, CountsWrongSizeBeforeNonFiniteWhenBothApply) {
 TEST(CommandValidator, RejectsDuplicateAndOlderSequenceNumbers) {
   CommandValidator v(kJoints, limits());
   ValidCommand out;
-  ASSERT_EQ(v.validate(valid_command(10), out), CommandVerdict::kAccepted);
+  ASSERT_EQ(v.validate(valid_command(10), kNow, out), CommandVerdict::kAccepted);
   msg::JointCommand dup = valid_command(10);
   dup.q_des_rad({0.9, 0.9, 0.9});
   out = marked();
-  EXPECT_EQ(v.validate(dup, out), CommandVerdict::kRejected);
+  EXPECT_EQ(v.validate(dup, kNow, out), CommandVerdict::kRejected);
   expect_untouched(out);
   out = marked();
-  EXPECT_EQ(v.validate(valid_command(9), out), CommandVerdict::kRejected);
+  EXPECT_EQ(v.validate(valid_command(9), kNow, out), CommandVerdict::kRejected);
   expect_untouched(out);
-  EXPECT_EQ(v.validate(valid_command(1), out), CommandVerdict::kRejected);
+  EXPECT_EQ(v.validate(valid_command(1), kNow, out), CommandVerdict::kRejected);
   EXPECT_EQ(v.count(CommandIssue::kSequenceOld), 3u);
   EXPECT_EQ(v.rejected(), 3u);
   // a newer one is accepted again, also after a gap
-  EXPECT_EQ(v.validate(valid_command(15), out), CommandVerdict::kAccepted);
-  EXPECT_EQ(v.validate(valid_command(16), out), CommandVerdict::kAccepted);
+  EXPECT_EQ(v.validate(valid_command(15), kNow, out), CommandVerdict::kAccepted);
+  EXPECT_EQ(v.validate(valid_command(16), kNow, out), CommandVerdict::kAccepted);
   EXPECT_EQ(v.rejected(), 3u);
 }
 
@@ -211,19 +214,19 @@ TEST(CommandValidator, RejectsSequenceZeroAsNotNewer) {
   // the first sample of a writer is 1; 0 can only come from an unstamped command
   CommandValidator v(kJoints, limits());
   ValidCommand out;
-  EXPECT_EQ(v.validate(valid_command(0), out), CommandVerdict::kRejected);
+  EXPECT_EQ(v.validate(valid_command(0), kNow, out), CommandVerdict::kRejected);
   EXPECT_EQ(v.count(CommandIssue::kSequenceOld), 1u);
 }
 
 TEST(CommandValidator, RejectedCommandDoesNotAdvanceTheSequence) {
   CommandValidator v(kJoints, limits());
   ValidCommand out;
-  ASSERT_EQ(v.validate(valid_command(1), out), CommandVerdict::kAccepted);
+  ASSERT_EQ(v.validate(valid_command(1), kNow, out), CommandVerdict::kAccepted);
   msg::JointCommand bad = valid_command(5);
   bad.tau_ff_nm()[0] = kNan;
-  EXPECT_EQ(v.validate(bad, out), CommandVerdict::kRejected);
+  EXPECT_EQ(v.validate(bad, kNow, out), CommandVerdict::kRejected);
   // 2..4 are still newer than the last accepted one (1)
-  EXPECT_EQ(v.validate(valid_command(2), out), CommandVerdict::kAccepted);
+  EXPECT_EQ(v.validate(valid_command(2), kNow, out), CommandVerdict::kAccepted);
 }
 
 TEST(CommandValidator, ClampedCommandAdvancesTheSequence) {
@@ -231,8 +234,8 @@ TEST(CommandValidator, ClampedCommandAdvancesTheSequence) {
   ValidCommand out;
   msg::JointCommand cmd = valid_command(3);
   cmd.q_des_rad()[0] = 5.0;
-  ASSERT_EQ(v.validate(cmd, out), CommandVerdict::kClamped);
-  EXPECT_EQ(v.validate(valid_command(3), out), CommandVerdict::kRejected);
+  ASSERT_EQ(v.validate(cmd, kNow, out), CommandVerdict::kClamped);
+  EXPECT_EQ(v.validate(valid_command(3), kNow, out), CommandVerdict::kRejected);
   EXPECT_EQ(v.count(CommandIssue::kSequenceOld), 1u);
 }
 
@@ -241,7 +244,7 @@ TEST(CommandValidator, ClampsPositionToJointLimitsAndCountsEachJoint) {
   msg::JointCommand cmd = valid_command(1);
   cmd.q_des_rad({5.0, -7.0, 0.3});  // joint 0 above 1.0, joint 1 below -1.1, joint 2 fine
   ValidCommand out;
-  EXPECT_EQ(v.validate(cmd, out), CommandVerdict::kClamped);
+  EXPECT_EQ(v.validate(cmd, kNow, out), CommandVerdict::kClamped);
   EXPECT_EQ(out.q_des_rad[0], 1.0);
   EXPECT_EQ(out.q_des_rad[1], -1.1);
   EXPECT_EQ(out.q_des_rad[2], 0.3);
@@ -259,7 +262,7 @@ TEST(CommandValidator, ClampsVelocitySymmetricallyAndCounts) {
   msg::JointCommand cmd = valid_command(1);
   cmd.dq_des_radps({3.0, -100.0, 1.5});
   ValidCommand out;
-  EXPECT_EQ(v.validate(cmd, out), CommandVerdict::kClamped);
+  EXPECT_EQ(v.validate(cmd, kNow, out), CommandVerdict::kClamped);
   EXPECT_EQ(out.dq_des_radps[0], 2.0);
   EXPECT_EQ(out.dq_des_radps[1], -2.0);
   EXPECT_EQ(out.dq_des_radps[2], 1.5);
@@ -272,7 +275,7 @@ TEST(CommandValidator, ClampsTorqueSymmetricallyAndCounts) {
   msg::JointCommand cmd = valid_command(1);
   cmd.tau_ff_nm({-10.5, 0.0, 1e6});
   ValidCommand out;
-  EXPECT_EQ(v.validate(cmd, out), CommandVerdict::kClamped);
+  EXPECT_EQ(v.validate(cmd, kNow, out), CommandVerdict::kClamped);
   EXPECT_EQ(out.tau_ff_nm[0], -10.0);
   EXPECT_EQ(out.tau_ff_nm[1], 0.0);
   EXPECT_EQ(out.tau_ff_nm[2], 10.0);
@@ -286,7 +289,7 @@ TEST(CommandValidator, ClampsNegativeAndExcessiveGainsAndCounts) {
   cmd.stiffness_nm_per_rad({-1.0, 600.0, 250.0});
   cmd.damping_nms_per_rad({51.0, 20.0, -0.5});
   ValidCommand out;
-  EXPECT_EQ(v.validate(cmd, out), CommandVerdict::kClamped);
+  EXPECT_EQ(v.validate(cmd, kNow, out), CommandVerdict::kClamped);
   EXPECT_EQ(out.stiffness[0], 0.0);
   EXPECT_EQ(out.stiffness[1], 500.0);
   EXPECT_EQ(out.stiffness[2], 250.0);
@@ -306,7 +309,7 @@ TEST(CommandValidator, CountsEveryClampReasonWhenAllFieldsExceedLimits) {
   cmd.stiffness_nm_per_rad()[2] = 9000.0;
   cmd.damping_nms_per_rad()[2] = 900.0;
   ValidCommand out;
-  EXPECT_EQ(v.validate(cmd, out), CommandVerdict::kClamped);
+  EXPECT_EQ(v.validate(cmd, kNow, out), CommandVerdict::kClamped);
   EXPECT_EQ(out.q_des_rad[2], 1.2);
   EXPECT_EQ(out.dq_des_radps[2], 2.0);
   EXPECT_EQ(out.tau_ff_nm[2], -10.0);
@@ -326,15 +329,141 @@ TEST(CommandValidator, AccumulatesCountsOverManyCommands) {
   for (int i = 0; i < 10; ++i) {
     msg::JointCommand clamped = valid_command(++seq);
     clamped.tau_ff_nm()[0] = 11.0;
-    EXPECT_EQ(v.validate(clamped, out), CommandVerdict::kClamped);
+    EXPECT_EQ(v.validate(clamped, kNow, out), CommandVerdict::kClamped);
     msg::JointCommand nan = valid_command(++seq);
     nan.q_des_rad()[1] = kNan;
-    EXPECT_EQ(v.validate(nan, out), CommandVerdict::kRejected);
-    EXPECT_EQ(v.validate(valid_command(++seq), out), CommandVerdict::kAccepted);
+    EXPECT_EQ(v.validate(nan, kNow, out), CommandVerdict::kRejected);
+    EXPECT_EQ(v.validate(valid_command(++seq), kNow, out), CommandVerdict::kAccepted);
   }
   EXPECT_EQ(v.count(CommandIssue::kTorqueLimit), 10u);
   EXPECT_EQ(v.count(CommandIssue::kNonFinite), 10u);
   EXPECT_EQ(v.rejected(), 10u);
+}
+
+
+TEST(CommandValidator, RejectsCommandsStampedTooLongAgoOrTooFarAhead) {
+  JointLimits l = limits();
+  l.max_command_age_s = 0.2;
+  CommandValidator v(kJoints, l);
+  ValidCommand out = marked();
+  msg::JointCommand old = valid_command(1);
+  old.header().stamp_ns(kNow - 300'000'000);
+  EXPECT_EQ(v.validate(old, kNow, out), CommandVerdict::kRejected);
+  msg::JointCommand ahead = valid_command(2);
+  ahead.header().stamp_ns(kNow + 300'000'000);  // a sender whose clock runs ahead
+  EXPECT_EQ(v.validate(ahead, kNow, out), CommandVerdict::kRejected);
+  expect_untouched(out);
+  EXPECT_EQ(v.count(CommandIssue::kStale), 2u);
+  msg::JointCommand recent = valid_command(3);
+  recent.header().stamp_ns(kNow - 150'000'000);
+  EXPECT_EQ(v.validate(recent, kNow, out), CommandVerdict::kAccepted);
+}
+
+TEST(CommandValidator, AcceptsAnyAgeWhenTheCheckIsOff) {
+  JointLimits l = limits();
+  l.max_command_age_s = 0;
+  CommandValidator v(kJoints, l);
+  ValidCommand out;
+  msg::JointCommand old = valid_command(1);
+  old.header().stamp_ns(0);
+  EXPECT_EQ(v.validate(old, kNow, out), CommandVerdict::kAccepted);
+}
+
+TEST(CommandValidator, RejectsMixedModesAndCartesianModeInAJointCommand) {
+  CommandValidator v(kJoints, limits());
+  ValidCommand out = marked();
+  msg::JointCommand mixed = valid_command(1);
+  mixed.mode()[1] = msg::CONTROL_POSITION_PD;
+  EXPECT_EQ(v.validate(mixed, kNow, out), CommandVerdict::kRejected);
+  msg::JointCommand cartesian = valid_command(2);
+  cartesian.mode().assign(kJoints, msg::CONTROL_CARTESIAN_IMPEDANCE);
+  EXPECT_EQ(v.validate(cartesian, kNow, out), CommandVerdict::kRejected);
+  expect_untouched(out);
+  EXPECT_EQ(v.count(CommandIssue::kMixedModes), 2u);
+  msg::JointCommand pd = valid_command(3);
+  pd.mode().assign(kJoints, msg::CONTROL_POSITION_PD);
+  EXPECT_EQ(v.validate(pd, kNow, out), CommandVerdict::kAccepted);
+  EXPECT_EQ(out.mode, msg::CONTROL_POSITION_PD);
+}
+
+msg::CartesianCommand valid_cartesian(uint64_t seq) {
+  msg::CartesianCommand c;
+  c.header().seq(seq);
+  c.header().stamp_ns(kNow);
+  c.target_pose().position_m().x(0.5);
+  c.target_pose().position_m().y(-0.1);
+  c.target_pose().position_m().z(0.6);
+  c.target_pose().orientation().w(0.0);
+  c.target_pose().orientation().x(1.0);
+  c.stiffness_translational_n_per_m().x(500);
+  c.stiffness_translational_n_per_m().y(500);
+  c.stiffness_translational_n_per_m().z(500);
+  c.stiffness_rotational_nm_per_rad().x(30);
+  c.stiffness_rotational_nm_per_rad().y(30);
+  c.stiffness_rotational_nm_per_rad().z(30);
+  c.damping_ratio(1.0);
+  c.nullspace_stiffness_nm_per_rad(5);
+  return c;
+}
+
+TEST(CommandValidator, AcceptsACartesianCommandAndSetsTheMode) {
+  CommandValidator v(kJoints, limits());
+  ValidCommand out;
+  EXPECT_EQ(v.validate(valid_cartesian(1), kNow, out), CommandVerdict::kAccepted);
+  EXPECT_EQ(out.mode, msg::CONTROL_CARTESIAN_IMPEDANCE);
+  EXPECT_EQ(out.x_des_m[0], 0.5);
+  EXPECT_EQ(out.orientation_wxyz[1], 1.0);
+  EXPECT_EQ(out.translational_stiffness_n_per_m[2], 500.0);
+  EXPECT_EQ(out.nullspace_stiffness_nm_per_rad, 5.0);
+}
+
+TEST(CommandValidator, RejectsNonFiniteCartesianCommandsAndNonUnitOrientations) {
+  CommandValidator v(kJoints, limits());
+  ValidCommand out;
+  msg::CartesianCommand nan = valid_cartesian(1);
+  nan.target_twist().angular_radps().y(kNan);
+  EXPECT_EQ(v.validate(nan, kNow, out), CommandVerdict::kRejected);
+  msg::CartesianCommand inf = valid_cartesian(2);
+  inf.target_pose().position_m().z(kInf);
+  EXPECT_EQ(v.validate(inf, kNow, out), CommandVerdict::kRejected);
+  EXPECT_EQ(v.count(CommandIssue::kNonFinite), 2u);
+  msg::CartesianCommand zero = valid_cartesian(3);
+  zero.target_pose().orientation().x(0.0);  // all zero: no rotation at all
+  EXPECT_EQ(v.validate(zero, kNow, out), CommandVerdict::kRejected);
+  msg::CartesianCommand doubled = valid_cartesian(4);
+  doubled.target_pose().orientation().x(2.0);
+  EXPECT_EQ(v.validate(doubled, kNow, out), CommandVerdict::kRejected);
+  EXPECT_EQ(v.count(CommandIssue::kBadOrientation), 2u);
+  // rounding off unit is normalised
+  msg::CartesianCommand rounded = valid_cartesian(5);
+  rounded.target_pose().orientation().x(1.005);
+  EXPECT_EQ(v.validate(rounded, kNow, out), CommandVerdict::kAccepted);
+  EXPECT_DOUBLE_EQ(out.orientation_wxyz[1], 1.0);
+}
+
+TEST(CommandValidator, ClampsCartesianTargetsToTheWorkspaceAndGainsToTheirLimits) {
+  CommandValidator v(kJoints, limits());
+  ValidCommand out;
+  msg::CartesianCommand far = valid_cartesian(1);
+  far.target_pose().position_m().x(5.0);
+  far.stiffness_translational_n_per_m().y(1e7);
+  far.target_twist().linear_mps().z(-50.0);
+  EXPECT_EQ(v.validate(far, kNow, out), CommandVerdict::kClamped);
+  EXPECT_EQ(out.x_des_m[0], limits().workspace_max_m[0]);
+  EXPECT_EQ(out.translational_stiffness_n_per_m[1], limits().max_translational_stiffness_n_per_m);
+  EXPECT_EQ(out.twist_des[2], -limits().max_linear_velocity_mps);
+  EXPECT_EQ(v.count(CommandIssue::kWorkspaceLimit), 1u);
+  EXPECT_EQ(v.count(CommandIssue::kGainLimit), 1u);
+  EXPECT_EQ(v.count(CommandIssue::kVelocityLimit), 1u);
+}
+
+TEST(CommandValidator, TracksCartesianSequenceNumbersApartFromJointOnes) {
+  CommandValidator v(kJoints, limits());
+  ValidCommand out;
+  ASSERT_EQ(v.validate(valid_command(100), kNow, out), CommandVerdict::kAccepted);
+  EXPECT_EQ(v.validate(valid_cartesian(1), kNow, out), CommandVerdict::kAccepted) << "another writer, its own numbers";
+  EXPECT_EQ(v.validate(valid_cartesian(1), kNow, out), CommandVerdict::kRejected);
+  EXPECT_EQ(v.count(CommandIssue::kSequenceOld), 1u);
 }
 
 }  // namespace

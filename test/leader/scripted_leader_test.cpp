@@ -61,10 +61,22 @@ TEST_F(ScriptedLeaderTest, StreamsTheScriptedMotionAsJointImpedanceCommands) {
   }));
   const auto& cmd = follower.command.latest();
   const double t = static_cast<double>(cmd.header().seq() - 1) * 1e-3;  // cycle index of that sample
+  // the amplitude fades in over ramp_s = 1 s (smoothstep)
+  const double envelope = t * t * (3 - 2 * t);
   for (size_t j = 0; j < kJoints; ++j) {
     EXPECT_EQ(cmd.mode()[j], msg::CONTROL_JOINT_IMPEDANCE);
-    EXPECT_NEAR(cmd.q_des_rad()[j], 0.3 * std::sin(2 * M_PI * 0.5 * t + 0.4 * static_cast<double>(j)), 1e-9);
+    EXPECT_NEAR(cmd.q_des_rad()[j], envelope * 0.3 * std::sin(2 * M_PI * 0.5 * t + 0.4 * static_cast<double>(j)), 1e-9);
   }
+}
+
+TEST_F(ScriptedLeaderTest, StartsAtHomeWithoutAStep) {
+  step(true);
+  ASSERT_TRUE(test::eventually([&] {
+    follower.command.poll();
+    return follower.command.has_sample();
+  }));
+  ASSERT_EQ(follower.command.latest().header().seq(), 1u);
+  for (double q : follower.command.latest().q_des_rad()) EXPECT_EQ(q, 0.0) << "home, although joints start out of phase";
 }
 
 TEST_F(ScriptedLeaderTest, FreezesTheCommandWhenTheFollowerGoesSilent) {

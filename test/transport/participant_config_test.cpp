@@ -149,6 +149,67 @@ TEST(ParseParticipantConfig, RejectsWrongTypes) {
             "node.yaml:3: transport.initial_peers: expected a list of strings, got '10.0.0.1'");
 }
 
+TEST(ParseParticipantConfig, DiscoversByMulticastByDefaultAndByPeersWhenPeersListed) {
+  EXPECT_EQ(parse("transport:\n  domain_id: 0\n").discovery, DiscoveryMode::kMulticast);
+  // configs from before the discovery section: listed peers meant unicast discovery
+  EXPECT_EQ(parse("transport:\n  domain_id: 0\n  initial_peers: [10.0.0.2]\n").discovery, DiscoveryMode::kPeers);
+}
+
+TEST(ParseParticipantConfig, ReadsDiscoveryServersInOrder) {
+  const ParticipantConfig c = parse(
+      "transport:\n"
+      "  domain_id: 0\n"
+      "  discovery:\n"
+      "    mode: server\n"
+      "    servers:\n"
+      "      - {id: 0, address: 10.0.0.1}\n"
+      "      - {id: 3, address: 10.0.0.2, port: 11900}\n");
+  EXPECT_EQ(c.discovery, DiscoveryMode::kServer);
+  ASSERT_EQ(c.discovery_servers.size(), 2u);
+  EXPECT_EQ(c.discovery_servers[0].id, 0);
+  EXPECT_EQ(c.discovery_servers[0].address, "10.0.0.1");
+  EXPECT_EQ(c.discovery_servers[0].port, 11811);  // fastdds discovery's default port
+  EXPECT_EQ(c.discovery_servers[1].id, 3);
+  EXPECT_EQ(c.discovery_servers[1].port, 11900);
+  EXPECT_STREQ(discovery_mode_name(c.discovery), "server");
+}
+
+TEST(ParseParticipantConfig, RejectsInconsistentDiscovery) {
+  const std::string head = "transport:\n  domain_id: 0\n";
+  EXPECT_EQ(error_of(head + "  discovery:\n    mode: server\n"),
+            "node.yaml:4: transport.discovery.servers: mode server needs at least one server ({id, address, port})");
+  EXPECT_EQ(error_of(head + "  discovery:\n    mode: peers\n"),
+            "node.yaml:4: transport.discovery.mode: mode peers needs transport.initial_peers (the hosts to announce to)");
+  EXPECT_EQ(error_of(head + "  initial_peers: [10.0.0.2]\n  discovery:\n    mode: multicast\n"),
+            "node.yaml:3: transport.initial_peers: initial peers replace multicast and servers: set discovery.mode: peers");
+  EXPECT_EQ(error_of(head + "  discovery:\n    mode: multicast\n    servers: [{id: 0, address: 10.0.0.1}]\n"),
+            "node.yaml:5: transport.discovery.servers: servers are only used with mode server, not multicast");
+  EXPECT_EQ(error_of(head + "  discovery:\n    mode: broadcast\n"),
+            "node.yaml:4: transport.discovery.mode: 'broadcast' is not one of: multicast, peers, server");
+}
+
+TEST(ParseParticipantConfig, RejectsBadDiscoveryServer) {
+  const std::string head = "transport:\n  domain_id: 0\n  discovery:\n    mode: server\n    servers:\n";
+  EXPECT_EQ(error_of(head + "      - {id: 0, address: server.lan}\n"),
+            "node.yaml:6: transport.discovery.servers[0].address: 'server.lan' is not an IPv4 address");
+  EXPECT_EQ(error_of(head + "      - {id: 256, address: 10.0.0.1}\n"),
+            "node.yaml:6: transport.discovery.servers[0].id: value 256 is out of range [0, 255]");
+  EXPECT_EQ(error_of(head + "      - {id: 1, address: 10.0.0.1}\n      - {id: 1, address: 10.0.0.2}\n"),
+            "node.yaml:7: transport.discovery.servers[1].id: server id 1 is listed twice");
+  EXPECT_EQ(error_of(head + "      - {address: 10.0.0.1}\n"),
+            "node.yaml:6: transport.discovery.servers[0].id: missing required key");
+}
+
+TEST(ParseParticipantConfig, SecurityIsOffWithoutItsSection) {
+  EXPECT_FALSE(parse("transport:\n  domain_id: 0\n").security.enabled());
+}
+
+TEST(ParseParticipantConfig, NamesTheMissingSecurityFile) {
+  const std::string error = error_of(
+      "transport:\n  domain_id: 0\n  security:\n    identity_ca: /nonexistent/ca.pem\n");
+  EXPECT_EQ(error, "node.yaml:4: transport.security.identity_ca: no file /nonexistent/ca.pem");
+}
+
 TEST(ParseParticipantConfig, RejectsUnknownKeyInSection) {
   EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  multicast: true\n"), "node.yaml:3: transport.multicast: unknown key");
 }

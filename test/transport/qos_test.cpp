@@ -80,12 +80,15 @@ TEST(Qos, StateReaderIsReliableTransientLocalAndKeepsWhatArrivesBetweenPolls) {
   EXPECT_EQ(q.resource_limits().max_samples_per_instance, kReaderDepth);
 }
 
-TEST(Qos, EveryPresetCarriesAutomaticLivelinessWithConfiguredLease) {
+TEST(Qos, EveryPresetCarriesLivelinessWithConfiguredLease) {
   for (QosPreset preset : {QosPreset::kStream, QosPreset::kState}) {
     const dds::DataWriterQos w = writer_qos(preset, config());
     const dds::DataReaderQos r = reader_qos(preset, config());
-    EXPECT_EQ(w.liveliness().kind, dds::AUTOMATIC_LIVELINESS_QOS) << to_string(preset);
-    EXPECT_EQ(r.liveliness().kind, dds::AUTOMATIC_LIVELINESS_QOS) << to_string(preset);
+    // streams: asserted per writer by its writes (see qos.cpp: Fast DDS 2.9 automatic liveliness
+    // is not tracked per participant); states: automatic
+    const auto kind = preset == QosPreset::kStream ? dds::MANUAL_BY_TOPIC_LIVELINESS_QOS : dds::AUTOMATIC_LIVELINESS_QOS;
+    EXPECT_EQ(w.liveliness().kind, kind) << to_string(preset);
+    EXPECT_EQ(r.liveliness().kind, kind) << to_string(preset);
     EXPECT_EQ(ns_of(w.liveliness().lease_duration), 1'250'000'000) << to_string(preset);
     EXPECT_EQ(ns_of(r.liveliness().lease_duration), 1'250'000'000) << to_string(preset);
     // the writer asserts three times per lease

@@ -7,6 +7,7 @@
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
+#include <fastdds/rtps/attributes/ServerAttributes.h>
 #include <fastrtps/utils/IPLocator.h>
 #include <fastrtps/xmlparser/XMLProfileManager.h>
 
@@ -17,6 +18,7 @@
 
 #include "teleop/transport/impairment/impairing_transport.h"
 #include "teleop/transport/qos.h"
+#include "teleop/transport/security_files.h"
 
 namespace teleop::transport {
 namespace dds = eprosima::fastdds::dds;
@@ -83,6 +85,38 @@ Locator_t peer_locator(const std::string& peer) {
   return loc;
 }
 
+// a client of each server; the servers' GUID prefixes follow from their ids (`fastdds discovery -i`)
+void add_discovery_servers(const std::vector<DiscoveryServer>& servers, dds::DomainParticipantQos& qos) {
+  auto& discovery = qos.wire_protocol().builtin.discovery_config;
+  discovery.discoveryProtocol = eprosima::fastrtps::rtps::DiscoveryProtocol_t::CLIENT;
+  for (const auto& server : servers) {
+    eprosima::fastdds::rtps::RemoteServerAttributes remote;
+    if (!eprosima::fastdds::rtps::get_server_client_default_guidPrefix(server.id, remote.guidPrefix)) {
+      throw std::runtime_error("no discovery server GUID prefix for id " + std::to_string(server.id));
+    }
+    Locator_t locator;
+    IPLocator::setIPv4(locator, server.address);
+    locator.port = server.port;
+    remote.metatrafficUnicastLocatorList.push_back(locator);
+    discovery.m_DiscoveryServers.push_back(remote);
+  }
+}
+
+// DDS Security by the builtin plugins: PKI-DH authentication, permissions, AES-GCM-GMAC
+void add_security(const SecurityConfig& security, dds::DomainParticipantQos& qos) {
+  auto& properties = qos.properties().properties();
+  const auto file = [](const std::string& path) { return "file:" + path; };
+  properties.emplace_back("dds.sec.auth.plugin", "builtin.PKI-DH");
+  properties.emplace_back("dds.sec.auth.builtin.PKI-DH.identity_ca", file(security.identity_ca));
+  properties.emplace_back("dds.sec.auth.builtin.PKI-DH.identity_certificate", file(security.identity_certificate));
+  properties.emplace_back("dds.sec.auth.builtin.PKI-DH.private_key", file(security.private_key));
+  properties.emplace_back("dds.sec.access.plugin", "builtin.Access-Permissions");
+  properties.emplace_back("dds.sec.access.builtin.Access-Permissions.permissions_ca", file(security.permissions_ca));
+  properties.emplace_back("dds.sec.access.builtin.Access-Permissions.governance", file(security.governance));
+  properties.emplace_back("dds.sec.access.builtin.Access-Permissions.permissions", file(security.permissions));
+  properties.emplace_back("dds.sec.crypto.plugin", "builtin.AES-GCM-GMAC");
+}
+
 dds::DomainParticipantQos participant_qos(const ParticipantConfig& config,
                                           const std::shared_ptr<impairment::ImpairmentEngine>& engine) {
   dds::DomainParticipantQos qos = dds::PARTICIPANT_QOS_DEFAULT;
@@ -94,6 +128,10 @@ dds::DomainParticipantQos participant_qos(const ParticipantConfig& config,
   }
   if (config.udpv4) {
     auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
+    // a send that cannot go out (link down, full socket buffer) must drop the datagram, not block
+    // the control loop that publishes: measured, a cut link stalled the loop for the whole
+    // participant lease with blocking sends
+    udp->non_blocking_send = true;
     for (const auto& itf : config.interface_whitelist) udp->interfaceWhiteList.push_back(itf);
     if (engine) {
       qos.transport().user_transports.push_back(std::make_shared<impairment::ImpairingTransportDescriptor>(udp, engine));
@@ -104,6 +142,8 @@ dds::DomainParticipantQos participant_qos(const ParticipantConfig& config,
   for (const auto& peer : config.initial_peers) {
     qos.wire_protocol().builtin.initialPeersList.push_back(peer_locator(peer));
   }
+  if (config.discovery == DiscoveryMode::kServer) add_discovery_servers(config.discovery_servers, qos);
+  if (config.security.enabled()) add_security(config.security, qos);
   auto& discovery = qos.wire_protocol().builtin.discovery_config;
   discovery.leaseDuration = to_dds_duration(config.participant_lease_ns);
   discovery.leaseDuration_announcementperiod = to_dds_duration(config.participant_lease_ns / 3);
@@ -137,12 +177,14 @@ Participant::Participant(const ParticipantConfig& config) : config_(config) {
                  config.impairment.seed, config.impairment.exclude_discovery ? ", discovery unimpaired" : "");
     for (const auto& l : config.impairment.links) spdlog::info("{}: link to {}: profile {}", config.name, l.to, l.profile.name);
   }
+  if (config.security.enabled()) verify_security_files(config.security);
   auto* factory = dds::DomainParticipantFactory::get_instance();
   participant_ = factory->create_participant(static_cast<dds::DomainId_t>(config.domain_id),
                                              participant_qos(config, impairment_), discovery_listener_.get(), mask);
   if (participant_ == nullptr) {
     throw std::runtime_error("DDS refused to create participant '" + config.name + "' in domain " +
-                             std::to_string(config.domain_id));
+                             std::to_string(config.domain_id) +
+                             (config.security.enabled() ? " (security on: see the Fast DDS security errors above)" : ""));
   }
   publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);

@@ -28,7 +28,65 @@ void validate_peer(const ConfigNode& section, const std::string& peer) {
   }
 }
 
+constexpr const char* kModeNames[] = {"multicast", "peers", "server"};
+
+DiscoveryServer parse_discovery_server(const ConfigNode& entry) {
+  DiscoveryServer server;
+  server.id = static_cast<int>(entry.get_int("id", Range{0, 255}));
+  server.address = entry.get_string("address");
+  if (!is_ipv4(server.address)) throw entry.error("address", "'" + server.address + "' is not an IPv4 address");
+  server.port = static_cast<uint16_t>(entry.get_int("port", Range{1, 65535}, server.port));
+  return server;
+}
+
+// `discovery:` (optional): without it, listed initial peers mean unicast discovery to them
+void parse_discovery(const ConfigNode& section, ParticipantConfig& c) {
+  const auto discovery = section.optional_child("discovery");
+  if (!discovery) {
+    c.discovery = c.initial_peers.empty() ? DiscoveryMode::kMulticast : DiscoveryMode::kPeers;
+    return;
+  }
+  const std::string mode = discovery->get_choice("mode", {"multicast", "peers", "server"});
+  c.discovery = mode == "peers" ? DiscoveryMode::kPeers : mode == "server" ? DiscoveryMode::kServer : DiscoveryMode::kMulticast;
+  for (const auto& entry : discovery->get_node_list("servers")) {
+    c.discovery_servers.push_back(parse_discovery_server(entry));
+    for (size_t i = 0; i + 1 < c.discovery_servers.size(); ++i) {
+      if (c.discovery_servers[i].id == c.discovery_servers.back().id) {
+        throw entry.error("id", "server id " + std::to_string(c.discovery_servers.back().id) + " is listed twice");
+      }
+    }
+  }
+  if (c.discovery == DiscoveryMode::kServer && c.discovery_servers.empty()) {
+    throw discovery->error("servers", "mode server needs at least one server ({id, address, port})");
+  }
+  if (c.discovery != DiscoveryMode::kServer && !c.discovery_servers.empty()) {
+    throw discovery->error("servers", "servers are only used with mode server, not " + mode);
+  }
+  if (c.discovery == DiscoveryMode::kPeers && c.initial_peers.empty()) {
+    throw discovery->error("mode", "mode peers needs transport.initial_peers (the hosts to announce to)");
+  }
+  if (c.discovery != DiscoveryMode::kPeers && !c.initial_peers.empty()) {
+    throw section.error("initial_peers", "initial peers replace multicast and servers: set discovery.mode: peers");
+  }
+}
+
+// `security:` (optional): every file must exist; their contents are checked when the participant starts
+SecurityConfig parse_security(const ConfigNode& section) {
+  const auto security = section.optional_child("security");
+  if (!security) return {};
+  SecurityConfig s;
+  s.identity_ca = security->get_path("identity_ca");
+  s.identity_certificate = security->get_path("identity_certificate");
+  s.private_key = security->get_path("private_key");
+  s.permissions_ca = security->get_path("permissions_ca");
+  s.governance = security->get_path("governance");
+  s.permissions = security->get_path("permissions");
+  return s;
+}
+
 }  // namespace
+
+const char* discovery_mode_name(DiscoveryMode mode) { return kModeNames[static_cast<int>(mode)]; }
 
 ParticipantConfig parse_participant_config(const ConfigNode& section, const std::string& default_name) {
   ParticipantConfig c;
@@ -39,6 +97,7 @@ ParticipantConfig parse_participant_config(const ConfigNode& section, const std:
   if (!c.udpv4 && !c.shm) throw section.error("shm", "at least one of udpv4 and shm must be true");
   c.initial_peers = section.get_string_list("initial_peers");
   for (const auto& peer : c.initial_peers) validate_peer(section, peer);
+  parse_discovery(section, c);
   c.interface_whitelist = section.get_string_list("interface_whitelist");
   for (const auto& itf : c.interface_whitelist) {
     if (!is_ipv4(itf)) throw section.error("interface_whitelist", "'" + itf + "' is not an IPv4 address");
@@ -50,6 +109,7 @@ ParticipantConfig parse_participant_config(const ConfigNode& section, const std:
   }
   c.stream_deadline_ns =
       static_cast<int64_t>(section.get_double("stream_deadline_ms", Range{0.1, 60'000}, 5.0) * 1e6);
+  c.security = parse_security(section);
   if (auto imp = section.optional_child("impairment")) c.impairment = impairment::parse_impairment_config(*imp);
   return c;
 }

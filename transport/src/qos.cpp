@@ -22,6 +22,11 @@ void apply_common(Qos& qos, QosPreset preset, const ParticipantConfig& config) {
   qos.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
   switch (preset) {
     case QosPreset::kStream:
+      // streams are written every cycle, so every write asserts the writer's liveliness. Not
+      // AUTOMATIC: in Fast DDS 2.9 a reader keeps every automatic writer alive as long as any
+      // participant asserts automatic liveliness (eProsima/Fast-DDS#4373, fixed in 2.10+), so
+      // with three nodes a cut host was never noticed (measured in test/netns)
+      qos.liveliness().kind = dds::MANUAL_BY_TOPIC_LIVELINESS_QOS;
       qos.reliability().kind = dds::BEST_EFFORT_RELIABILITY_QOS;
       qos.durability().kind = dds::VOLATILE_DURABILITY_QOS;
       qos.deadline().period = to_dds_duration(config.stream_deadline_ns);

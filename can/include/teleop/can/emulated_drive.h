@@ -21,7 +21,8 @@
 //   0x1000 device type (ro), 0x1001 error register (ro), 0x1017 heartbeat ms (rw),
 //   0x1018 identity sub 1..4 (ro), 0x1400/0x1401 RPDO communication (sub 1 COB-ID, 2 type),
 //   0x1600/0x1601 RPDO mapping, 0x1800/0x1801 TPDO communication (sub 1, 2, 3 inhibit,
-//   5 event timer ms), 0x1A00/0x1A01 TPDO mapping, and the CiA 402 objects of cia402::od.
+//   5 event timer ms), 0x1A00/0x1A01 TPDO mapping, the CiA 402 objects of cia402::od, and the
+//   manufacturer objects of hand_drive_objects.h (0x2000 gains, 0x2F00 fault injection).
 // Defaults: RPDO1 0x200+id [0x6040, 0x607A] synchronous; TPDO1 0x180+id [0x6064, 0x6078,
 // 0x6041] on every SYNC; RPDO2 / TPDO2 disabled (TPDO2 mapped [0x606C, 0x603F]).
 // Modes of operation start at 0 (no mode: the drive holds its position when enabled); the
@@ -129,6 +130,8 @@ class EmulatedDrive {
 
   // --- observation (for tests and the emulator's own report) ---
   NodeId node_id() const { return config_.node_id; }
+  /// The configuration, with the gains as last written over SDO (object 0x2000).
+  const EmulatedDriveConfig& config() const { return config_; }
   NmtState nmt_state() const { return nmt_; }
   bool booted() const { return !initialising_; }
   cia402::State state() const { return state_; }
@@ -145,6 +148,9 @@ class EmulatedDrive {
   double reference_rad() const { return ref_rad_; }
   int32_t position_ticks() const;
   int32_t target_ticks() const { return target_ticks_; }
+  /// Software position limits (0x607D sub 1, 2) [ticks].
+  int32_t limit_min_ticks() const { return limit_min_ticks_; }
+  int32_t limit_max_ticks() const { return limit_max_ticks_; }
   /// Encoder ticks per output radian (ticks_per_rev * gear_ratio / 2 pi).
   double ticks_per_rad() const { return ticks_per_rad_; }
   /// Current limit in force [A] (0x6073 and the hardware peak).
@@ -162,6 +168,9 @@ class EmulatedDrive {
   /// Drops the next `count` TPDOs / RPDOs (kDropForever: until called again with 0).
   void drop_tpdos(uint32_t count) { drop_tpdos_ = count; }
   void drop_rpdos(uint32_t count) { drop_rpdos_ = count; }
+  /// Aborts every SDO request (code 0x08000021, local control) except to the fault injection
+  /// object 0x2F00, e.g. to test a master's reaction to SDO aborts.
+  void set_sdo_refused(bool refused) { sdo_refused_ = refused; }
   /// Sends every TPDO this much later than sampled (0 = at once); at most 16 wait at a time.
   void set_tpdo_delay(double seconds);
 
@@ -213,6 +222,11 @@ class EmulatedDrive {
   uint32_t write_object(uint16_t index, uint8_t subindex, uint32_t value);
   uint32_t write_pdo_communication(PdoChannel& pdo, bool transmit, uint8_t subindex, uint32_t value);
   uint32_t write_pdo_mapping(PdoChannel& pdo, bool transmit, uint8_t subindex, uint32_t value);
+  // manufacturer objects (hand_drive_objects.h)
+  uint32_t read_gain(uint8_t subindex, uint32_t& value) const;
+  uint32_t write_gain(uint8_t subindex, uint32_t value);
+  uint32_t read_injection(uint8_t subindex, uint32_t& value) const;
+  uint32_t write_injection(uint8_t subindex, uint32_t value);
   // CiA 402
   void set_controlword(uint16_t controlword);
   void evaluate_controlword(uint16_t previous);
@@ -285,6 +299,7 @@ class EmulatedDrive {
   uint32_t drop_tpdos_ = 0;
   uint32_t drop_rpdos_ = 0;
   int64_t tpdo_delay_ns_ = 0;
+  bool sdo_refused_ = false;
 
   EmulatedDriveStats stats_;
 };

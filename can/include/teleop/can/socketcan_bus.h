@@ -13,6 +13,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <span>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -63,6 +64,8 @@ struct SocketCanStats {
 /// Every CANopen frame addressed to `node` or broadcast (NMT, SYNC, SDO request, RPDOs 1-4):
 /// the filter set an emulated or real drive needs.
 std::vector<CanIdFilter> canopen_node_filters(uint8_t node);
+/// Every frame a CANopen master needs from these nodes: EMCY, TPDO1, SDO response, heartbeat.
+std::vector<CanIdFilter> canopen_master_filters(std::span<const uint8_t> nodes);
 
 class SocketCanBus final : public CanBus {
  public:

@@ -28,6 +28,7 @@ class ControllerSwitch {
   int add(Controller& controller);
 
   /// Switches to `mode` from the next compute() on (out-of-range or current target: ignored).
+  /// Before the first compute() the switch is immediate: no torque has been output yet.
   /// During a blend, the blend restarts from the mode being blended to, carrying the difference
   /// between the last output and that mode's torque as the offset delta (fading with 1 - a),
   /// so a second switch is bumpless too.

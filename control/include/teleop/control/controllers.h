@@ -43,6 +43,8 @@ class JointImpedance final : public Controller {
   JointVector compute(const ArmState& state, const ArmCommand& command) override;
   const char* name() const override { return "joint_impedance"; }
   const Gains& gains() const { return gains_; }
+  /// Real-time safe: the gains of each command (e.g. the stiffness the leader asks for).
+  void set_gains(const Gains& gains) { gains_ = gains; }
 
  private:
   ArmDynamics* dyn_;
@@ -50,7 +52,8 @@ class JointImpedance final : public Controller {
 };
 
 /// PARTI eq. 4, task-space impedance with nullspace posture stiffness:
-///   tau = J^T (K_x e - D_x J dq) + N (K_n (q_rest - q) - D_n dq) + n(q, dq)
+///   tau = J^T (K_x e + D_x (v_d - J dq)) + N (K_n (q_rest - q) - D_n dq) + n(q, dq)
+/// (v_d the desired twist, zero for a pose set point)
 /// e = (x_d - x, orientation error), the orientation error being the rotation vector of
 /// R_d R^T (from the quaternion q_d q^-1, taken with w >= 0), world frame.
 /// D_x = diag(2 zeta sqrt(k_i Lambda_ii)) with Lambda = (J M^-1 J^T)^-1 the task-space inertia
@@ -72,6 +75,8 @@ class CartesianImpedance final : public Controller {
   JointVector compute(const ArmState& state, const ArmCommand& command) override;
   const char* name() const override { return "cartesian_impedance"; }
   const Gains& gains() const { return gains_; }
+  /// Real-time safe: the gains of each command.
+  void set_gains(const Gains& gains) { gains_ = gains; }
   /// Pose error of the last compute(): translation then rotation vector (world frame).
   const Vector6& last_error() const { return error_; }
 

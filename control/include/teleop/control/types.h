@@ -31,6 +31,8 @@ struct ArmCommand {
   // task space: Cartesian impedance (end-effector site, world frame)
   Eigen::Vector3d x_d = Eigen::Vector3d::Zero();
   Eigen::Quaterniond orientation_d = Eigen::Quaterniond::Identity();
+  /// Desired twist (linear then angular, world frame); zero for a pose set point.
+  Vector6 twist_d = Vector6::Zero();
   /// Rest posture the Cartesian impedance pulls towards in its nullspace.
   JointVector q_rest = JointVector::Zero();
 };

@@ -1,70 +1,82 @@
 #pragma once
-// The follower robot: validates the leader's joint commands, runs a joint impedance law on its
-// (here simulated) joints, watches for silence, and publishes its state and the wrench it feels.
+// The follower robot: validates joint and Cartesian commands, runs the arm's controllers
+// (ArmControl) on a RobotHardware, watches for silent or dead command sources, limits the
+// torque, and publishes its state with the estimated external torque and end-effector wrench.
 
 #include <teleop/msg/arm.h>
 
-#include "teleop/common/config.h"
-#include "teleop/common/joint_model.h"
-#include "teleop/follower/command_validator.h"
-#include "teleop/follower/mujoco_hardware.h"
+#include <memory>
+
+#include "teleop/common/error_stats.h"
+#include "teleop/follower/arm_control.h"
+#include "teleop/follower/follower_config.h"
 #include "teleop/follower/robot_hardware.h"
+#include "teleop/follower/torque_limiter.h"
 #include "teleop/runtime/node_runner.h"
 #include "teleop/transport/publication.h"
 #include "teleop/transport/subscription.h"
 
 namespace teleop::follower {
 
-struct FollowerConfig {
-  size_t joints = 7;
-  /// Which robot: the simple joint model, or a MuJoCo simulation of the arm.
-  enum class Hardware { kSimple, kMujoco } hardware = Hardware::kSimple;
-  JointModelParams model;
-  MujocoHardwareConfig mujoco;
-  JointVector home_rad{};
-  JointLimits limits;
-  /// No valid command for this long: hold the current pose (watchdog).
-  double command_timeout_s = 0.02;
-  /// Impedance used to hold the pose in the safe state.
-  double hold_stiffness_nm_per_rad = 200.0;
-  double hold_damping_nms_per_rad = 20.0;
-  /// Distance from joint 0 to the contact point, to express the contact torque as a force [m].
-  double wrench_lever_m = 0.5;
-};
-
 class FollowerNode final : public runtime::NodeLogic {
  public:
   /// Reads the `follower:` section.
-  static FollowerConfig parse_config(const ConfigNode& root);
+  static FollowerConfig parse_config(const ConfigNode& root) { return parse_follower_config(root); }
 
+  /// Drives the MuJoCo arm of `config.mujoco`.
   FollowerNode(const FollowerConfig& config, runtime::NodeContext& context);
+  /// Drives `hardware` (tests, other robots).
+  FollowerNode(const FollowerConfig& config, std::unique_ptr<RobotHardware> hardware, runtime::NodeContext& context);
 
   void cycle(const CycleTick& tick) override;
   msg::NodeState state() const override { return state_; }
   void active_faults(std::vector<uint32_t>& faults) const override;
   void fill_report(runtime::NodeReport& report) const override;
 
+  /// For tests and benchmarks: what the robot measured last, and the control stack.
+  const ArmState& arm() const { return arm_; }
+  const ArmControl& control() const { return control_; }
+  /// The torque written to the hardware in the last cycle, before its gravity compensation.
+  const JointVector& commanded_torque() const { return command_nm_; }
+
  private:
-  void take_command(int64_t now_ns);
+  void take_commands(int64_t now_ns);
   void run_watchdog(int64_t now_ns);
-  void compute_torque();
+  bool source_lost() const;
+  void hold_current_pose();
+  void command_torque();
+  void record_metrics();
   void publish_state();
 
   FollowerConfig config_;
   std::unique_ptr<RobotHardware> hardware_;
-  ArmState arm_{};
+  ArmControl control_;
   CommandValidator validator_;
-  transport::Subscription<msg::JointCommand> command_;
+  TorqueLimiter limiter_;
+  transport::Subscription<msg::JointCommand> joint_commands_;
+  transport::Subscription<msg::CartesianCommand> cartesian_commands_;
   transport::Publication<msg::JointState> state_pub_;
   transport::Publication<msg::WrenchStamped> wrench_pub_;
+  ArmState arm_{};
   msg::NodeState state_ = msg::STATE_STARTING;
   ValidCommand active_{};
+  // which source gave the last valid command, and its liveliness losses then
+  enum class Source { kNone, kJoint, kCartesian } source_ = Source::kNone;
+  uint64_t liveliness_lost_at_command_ = 0;
   int64_t last_valid_command_ns_ = 0;
-  bool have_command_ = false;
-  JointVector tau_nm_{};
+  JointVector total_nm_{};
+  JointVector command_nm_{};
+  // counters and metrics for the report
   uint64_t watchdog_trips_ = 0;
-  uint64_t torque_saturations_ = 0;
+  uint64_t liveliness_trips_ = 0;
+  double watchdog_latency_max_s_ = 0.0;
   uint64_t hardware_faults_ = 0;
+  uint64_t mode_changes_ = 0;
+  msg::ControlMode last_mode_ = msg::CONTROL_JOINT_IMPEDANCE;
+  ErrorStats joint_tracking_;
+  ErrorStats cartesian_tracking_;
+  ErrorStats observer_vs_hardware_;
+  ErrorStats direct_vs_hardware_;
   double peak_external_force_n_ = 0.0;
 };
 

@@ -28,6 +28,9 @@ class MujocoHardware final : public RobotHardware {
   [[nodiscard]] HardwareStatus read(ArmState& state) override;
   [[nodiscard]] HardwareStatus write(const JointVector& tau_nm) override;
   const char* name() const override { return name_.c_str(); }
+  bool compensates_gravity() const override { return true; }
+  /// The joints' ranges and the motors' control ranges from the model.
+  HardwareLimits limits() const override;
 
   /// The simulation, for tests and the twin (not for the control loop).
   sim::MujocoModel& simulation() { return sim_; }

@@ -1,7 +1,7 @@
 #pragma once
 // The robot the follower drives, behind a small interface: the node never knows whether it is
-// a simulation or a real arm. Torque-controlled, like the Franka interface: commanded torques
-// come on top of the gravity compensation the robot does itself.
+// a simulation or a real arm. Torque-controlled; a robot may compensate gravity itself (like the
+// Franka interface), and says so.
 
 #include <cstdint>
 
@@ -25,6 +25,14 @@ struct ArmState {
 
 enum class HardwareStatus { kOk, kFault };
 
+/// What the robot itself can do, per joint (infinite where it has no limit).
+struct HardwareLimits {
+  JointVector q_min_rad{};
+  JointVector q_max_rad{};
+  /// Largest total link-side torque a joint's drive produces.
+  JointVector max_torque_nm{};
+};
+
 class RobotHardware {
  public:
   virtual ~RobotHardware() = default;
@@ -32,8 +40,13 @@ class RobotHardware {
   virtual size_t joints() const = 0;
   /// Reads the current state. Real-time safe.
   [[nodiscard]] virtual HardwareStatus read(ArmState& state) = 0;
-  /// Commands joint torques (on top of gravity compensation) for the next period. Real-time safe.
+  /// Commands joint torques for the next period (on top of the robot's own gravity compensation
+  /// when compensates_gravity()). Real-time safe.
   [[nodiscard]] virtual HardwareStatus write(const JointVector& tau_nm) = 0;
+  /// True when the robot adds g(q) to every commanded torque itself (as the Franka interface
+  /// does): the follower then sends its controller's torque minus its own g(q).
+  virtual bool compensates_gravity() const = 0;
+  virtual HardwareLimits limits() const = 0;
   /// A name for logs and reports ("simple", "mujoco:scene_wall.xml").
   virtual const char* name() const = 0;
 };

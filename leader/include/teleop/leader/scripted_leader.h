@@ -20,6 +20,8 @@ struct ScriptedLeaderConfig {
   /// Amplitude of each joint's sinusoid [rad] (`amplitudes_rad`, or `amplitude_rad` for all).
   JointVector amplitude_rad{};
   double frequency_hz = 0.5;
+  /// The amplitude fades in over this time from the start (no step to the first target).
+  double ramp_s = 1.0;
   /// Joint impedance commanded to the follower.
   double stiffness_nm_per_rad = 200.0;
   double damping_nms_per_rad = 10.0;

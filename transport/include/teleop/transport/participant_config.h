@@ -10,6 +10,35 @@
 
 namespace teleop::transport {
 
+/// How participants find each other.
+enum class DiscoveryMode {
+  /// SPDP announcements to the domain's multicast group: one LAN, multicast allowed.
+  kMulticast,
+  /// Announcements to the listed `initial_peers` only (unicast): no multicast needed.
+  kPeers,
+  /// Client of Fast DDS discovery servers (`fastdds discovery`): no multicast, no peer lists.
+  kServer,
+};
+
+/// A Fast DDS discovery server this participant is a client of.
+struct DiscoveryServer {
+  /// The server's id (`fastdds discovery -i ID`): it fixes the server's GUID prefix.
+  int id = 0;
+  std::string address;
+  uint16_t port = 11811;
+};
+
+/// DDS Security (PKI-DH authentication, Access-Permissions, AES-GCM-GMAC): files in PEM / S/MIME.
+struct SecurityConfig {
+  std::string identity_ca;
+  std::string identity_certificate;
+  std::string private_key;
+  std::string permissions_ca;
+  std::string governance;
+  std::string permissions;
+  bool enabled() const { return !identity_certificate.empty(); }
+};
+
 struct ParticipantConfig {
   int domain_id = 0;
   /// Participant name shown in discovery tools.
@@ -22,6 +51,10 @@ struct ParticipantConfig {
   /// Unicast discovery peers, "address" or "address:port" (port 0 / absent: the domain's
   /// well-known discovery ports). Lets nodes find each other where multicast is not allowed.
   std::vector<std::string> initial_peers;
+  DiscoveryMode discovery = DiscoveryMode::kMulticast;
+  /// Discovery servers in order of preference (mode kServer): the first is the primary, the
+  /// others back it up; the participant stays connected to all of them.
+  std::vector<DiscoveryServer> discovery_servers;
   /// Network interfaces (IPv4 addresses) UDP may use; empty = all.
   std::vector<std::string> interface_whitelist;
   /// A writer that stays silent longer than this is considered dead by its readers.
@@ -30,11 +63,16 @@ struct ParticipantConfig {
   int64_t participant_lease_ns = 3'000'000'000;
   /// Deadline of the 1 kHz streams: a reader notices when no sample came within it.
   int64_t stream_deadline_ns = 5'000'000;
+  /// Authentication, access control and encryption; off when no files are given.
+  SecurityConfig security;
   /// Network impairment of this participant's outgoing traffic (off when no links).
   impairment::ImpairmentConfig impairment;
 };
 
 /// Reads the `transport:` section. Throws ConfigError naming file and key.
 ParticipantConfig parse_participant_config(const ConfigNode& section, const std::string& default_name);
+
+/// Name of a discovery mode as written in YAML.
+const char* discovery_mode_name(DiscoveryMode mode);
 
 }  // namespace teleop::transport

@@ -21,6 +21,7 @@ namespace topics {
 
 // leader station -> follower robot: the operator's commanded motion
 inline constexpr TopicSpec<msg::JointCommand> kLeaderCommand{"teleop/leader/joint_command", QosPreset::kStream};
+inline constexpr TopicSpec<msg::CartesianCommand> kLeaderCartesian{"teleop/leader/cartesian_command", QosPreset::kStream};
 // leader device state (for the twin in model-mediated teleoperation)
 inline constexpr TopicSpec<msg::JointState> kLeaderState{"teleop/leader/joint_state", QosPreset::kStream};
 // follower robot -> everyone: measured state and estimated external wrench
@@ -33,6 +34,8 @@ inline constexpr TopicSpec<msg::JointCommand> kTwinCommand{"teleop/twin/joint_co
 // hand
 inline constexpr TopicSpec<msg::HandCommand> kHandCommand{"teleop/hand/command", QosPreset::kStream};
 inline constexpr TopicSpec<msg::HandState> kHandState{"teleop/hand/state", QosPreset::kStream};
+// the hand's 20 joint angles from its 9 motors (q = S_m m + q0), for the twin and viewers
+inline constexpr TopicSpec<msg::JointState> kHandJoints{"teleop/hand/joint_state", QosPreset::kStream};
 // passivity energy packets, one topic per direction
 inline constexpr TopicSpec<msg::TdpaEnergy> kTdpaLeaderToFollower{"teleop/tdpa/leader_to_follower",
                                                                   QosPreset::kStream};

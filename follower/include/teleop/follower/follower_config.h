@@ -1,0 +1,34 @@
+#pragma once
+// The `follower:` section of a follower node's configuration (config/nodes/follower.yaml).
+
+#include <string>
+
+#include "teleop/common/config.h"
+#include "teleop/follower/arm_control.h"
+#include "teleop/follower/command_validator.h"
+#include "teleop/follower/mujoco_hardware.h"
+
+namespace teleop::follower {
+
+struct FollowerConfig {
+  size_t joints = 7;
+  /// The robot: a MuJoCo simulation of the arm (real arms plug in as other RobotHardware).
+  MujocoHardwareConfig mujoco;
+  /// Where joint commands come from: the leader (teleoperation) or the twin (hardware in the loop).
+  enum class CommandSource { kLeader, kTwin } command_source = CommandSource::kLeader;
+  /// Command limits; the torque limits are further bounded by what the hardware reports.
+  JointLimits limits;
+  /// Largest change of commanded torque per second (0: none).
+  double max_torque_rate_nm_per_s = 1000.0;
+  /// No valid command for this long: hold the current pose (watchdog).
+  double command_timeout_s = 0.02;
+  /// Joint impedance used to hold the pose in the safe state (gravity compensated).
+  double hold_stiffness_nm_per_rad = 200.0;
+  double hold_damping_nms_per_rad = 20.0;
+  ArmControlConfig control;
+};
+
+/// Reads the `follower:` section; throws ConfigError naming file, key and problem.
+FollowerConfig parse_follower_config(const ConfigNode& root);
+
+}  // namespace teleop::follower

@@ -1,0 +1,95 @@
+#include "teleop/follower/follower_config.h"
+
+#include <cmath>
+
+#include "teleop/common/joint_config.h"
+#include "teleop/control/types.h"
+
+namespace teleop::follower {
+namespace {
+
+constexpr Range kAngle{-2 * M_PI, 2 * M_PI};
+
+std::array<double, 3> read_triple(const ConfigNode& s, const std::string& key, Range range, std::array<double, 3> fallback) {
+  const auto values = s.get_double_list(key, range);
+  if (values.empty()) return fallback;
+  if (values.size() != 3) throw s.error(key, "has " + std::to_string(values.size()) + " values, expected 3 (x, y, z)");
+  return {values[0], values[1], values[2]};
+}
+
+control::JointVector to_eigen(const JointVector& v) { return Eigen::Map<const control::JointVector>(v.data()); }
+
+void read_joint_limits(const ConfigNode& s, size_t n, JointLimits& l) {
+  l.q_min_rad = read_joint_list(s, "q_min_rad", n, kAngle, -2.8);
+  l.q_max_rad = read_joint_list(s, "q_max_rad", n, kAngle, 2.8);
+  for (size_t i = 0; i < n; ++i) {
+    if (l.q_min_rad[i] >= l.q_max_rad[i]) throw s.error("q_max_rad", "must exceed q_min_rad for every joint");
+  }
+  l.max_velocity_radps = s.get_double("max_velocity_radps", Range{0.01, 100}, l.max_velocity_radps);
+  l.max_torque_nm = read_joint_list(s, "max_torque_nm", n, Range{0.1, 1e4}, 80.0);
+  l.max_stiffness_nm_per_rad = s.get_double("max_stiffness_nm_per_rad", Range{0, 1e6}, l.max_stiffness_nm_per_rad);
+  l.max_damping_nms_per_rad = s.get_double("max_damping_nms_per_rad", Range{0, 1e5}, l.max_damping_nms_per_rad);
+  l.max_command_age_s = s.get_double("max_command_age_ms", Range{0, 60'000}, l.max_command_age_s * 1e3) * 1e-3;
+}
+
+void read_cartesian_limits(const ConfigNode& s, JointLimits& l) {
+  l.workspace_min_m = read_triple(s, "workspace_min_m", Range{-10, 10}, l.workspace_min_m);
+  l.workspace_max_m = read_triple(s, "workspace_max_m", Range{-10, 10}, l.workspace_max_m);
+  for (size_t i = 0; i < 3; ++i) {
+    if (l.workspace_min_m[i] >= l.workspace_max_m[i]) throw s.error("workspace_max_m", "must exceed workspace_min_m on every axis");
+  }
+  l.max_translational_stiffness_n_per_m =
+      s.get_double("max_translational_stiffness_n_per_m", Range{0, 1e5}, l.max_translational_stiffness_n_per_m);
+  l.max_rotational_stiffness_nm_per_rad =
+      s.get_double("max_rotational_stiffness_nm_per_rad", Range{0, 1e4}, l.max_rotational_stiffness_nm_per_rad);
+  l.max_nullspace_stiffness_nm_per_rad =
+      s.get_double("max_nullspace_stiffness_nm_per_rad", Range{0, 1e4}, l.max_nullspace_stiffness_nm_per_rad);
+  l.max_linear_velocity_mps = s.get_double("max_linear_velocity_mps", Range{0.001, 10}, l.max_linear_velocity_mps);
+  l.max_angular_velocity_radps = s.get_double("max_angular_velocity_radps", Range{0.001, 20}, l.max_angular_velocity_radps);
+}
+
+ArmControlConfig read_control(const ConfigNode& c, size_t n) {
+  ArmControlConfig a;
+  a.model_path = c.get_path("model");
+  a.ee_site = c.get_string("ee_site", a.ee_site);
+  a.position_pd.kp = to_eigen(read_joint_list(c, "position_pd_kp", n, Range{0, 1e5}, 600.0));
+  a.position_pd.kd = to_eigen(read_joint_list(c, "position_pd_kd", n, Range{0, 1e4}, 30.0));
+  a.nullspace_damping = to_eigen(read_joint_list(c, "nullspace_damping_nms_per_rad", n, Range{0, 1e3}, 2.0));
+  a.rest_posture_rad = to_eigen(read_joint_list(c, "rest_posture_rad", n, kAngle, 0.0));
+  a.blend_s = c.get_double("blend_ms", Range{0, 5000}, a.blend_s * 1e3) * 1e-3;
+  a.observer_gain_per_s = c.get_double("observer_gain_per_s", Range{1, 1000}, a.observer_gain_per_s);
+  const std::string source =
+      c.get_choice("published_estimate", {"momentum_observer", "direct", "hardware"}, "momentum_observer");
+  a.published_estimate = source == "direct"     ? ExternalTorqueSource::kDirect
+                         : source == "hardware" ? ExternalTorqueSource::kHardware
+                                                : ExternalTorqueSource::kMomentumObserver;
+  return a;
+}
+
+}  // namespace
+
+FollowerConfig parse_follower_config(const ConfigNode& root) {
+  const ConfigNode s = root.child("follower");
+  FollowerConfig c;
+  c.joints = read_joint_count(s);
+  if (c.joints != static_cast<size_t>(control::kDof)) {
+    throw s.error("joints", "the follower drives a " + std::to_string(control::kDof) + "-joint arm");
+  }
+  s.get_choice("hardware", {"mujoco"}, "mujoco");
+  const ConfigNode mujoco = s.child("mujoco");
+  c.mujoco.model_path = mujoco.get_path("model");
+  c.mujoco.keyframe = mujoco.get_string("keyframe", "");
+  c.command_source = s.get_choice("command_source", {"leader", "twin"}, "leader") == "twin"
+                         ? FollowerConfig::CommandSource::kTwin
+                         : FollowerConfig::CommandSource::kLeader;
+  read_joint_limits(s, c.joints, c.limits);
+  read_cartesian_limits(s, c.limits);
+  c.max_torque_rate_nm_per_s = s.get_double("max_torque_rate_nm_per_s", Range{0, 1e6}, c.max_torque_rate_nm_per_s);
+  c.command_timeout_s = s.get_double("command_timeout_ms", Range{1, 60'000}, c.command_timeout_s * 1e3) * 1e-3;
+  c.hold_stiffness_nm_per_rad = s.get_double("hold_stiffness_nm_per_rad", Range{0, 1e5}, c.hold_stiffness_nm_per_rad);
+  c.hold_damping_nms_per_rad = s.get_double("hold_damping_nms_per_rad", Range{0, 1e4}, c.hold_damping_nms_per_rad);
+  c.control = read_control(s.child("control"), c.joints);
+  return c;
+}
+
+}  // namespace teleop::follower

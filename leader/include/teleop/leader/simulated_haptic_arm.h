@@ -1,0 +1,44 @@
+#pragma once
+// A simulated haptic device: the Panda-class arm on MuJoCo (gravity compensated by the device,
+// torque controlled) with a simulated operator's hand holding it: a spring-damper pulling the
+// device towards where the operator wants to go (set_operator_target). The rendered feedback
+// acts against that hand, so what the operator feels changes where the device goes, and
+// closed-loop effects (instability under delay) show.
+
+#include <memory>
+
+#include "teleop/follower/mujoco_hardware.h"
+#include "teleop/leader/leader_device.h"
+
+namespace teleop::leader {
+
+struct HapticArmConfig {
+  follower::MujocoHardwareConfig model;
+  /// The operator's grip: joint stiffness [Nm/rad] and damping [Nm s/rad] of the hand.
+  double hand_stiffness_nm_per_rad = 60.0;
+  double hand_damping_nms_per_rad = 4.0;
+};
+
+class SimulatedHapticArm final : public LeaderDevice {
+ public:
+  explicit SimulatedHapticArm(const HapticArmConfig& config);
+
+  /// Where the operator pulls the device (joint space). Real-time safe.
+  void set_operator_target(const JointVector& q_rad, const JointVector& dq_radps);
+
+  size_t joints() const override { return arm_.joints(); }
+  [[nodiscard]] bool read(DeviceState& state) override;
+  [[nodiscard]] bool write(const JointVector& feedback_nm) override;
+  const char* name() const override { return "simulated_haptic_arm"; }
+
+ private:
+  HapticArmConfig config_;
+  follower::MujocoHardware arm_;
+  follower::ArmState measured_{};
+  JointVector target_q_{};
+  JointVector target_dq_{};
+  JointVector operator_nm_{};
+  JointVector applied_{};
+};
+
+}  // namespace teleop::leader

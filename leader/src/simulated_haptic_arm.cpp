@@ -1,0 +1,35 @@
+#include "teleop/leader/simulated_haptic_arm.h"
+
+#include <stdexcept>
+
+namespace teleop::leader {
+
+SimulatedHapticArm::SimulatedHapticArm(const HapticArmConfig& config) : config_(config), arm_(config.model) {
+  if (arm_.read(measured_) != follower::HardwareStatus::kOk) throw std::runtime_error("the simulated haptic arm cannot be read");
+  // the operator starts by holding the device where it is
+  target_q_ = measured_.q_rad;
+}
+
+void SimulatedHapticArm::set_operator_target(const JointVector& q_rad, const JointVector& dq_radps) {
+  target_q_ = q_rad;
+  target_dq_ = dq_radps;
+}
+
+bool SimulatedHapticArm::read(DeviceState& state) {
+  if (arm_.read(measured_) != follower::HardwareStatus::kOk) return false;
+  state.q_rad = measured_.q_rad;
+  state.dq_radps = measured_.dq_radps;
+  state.tau_operator_nm = operator_nm_;
+  return true;
+}
+
+bool SimulatedHapticArm::write(const JointVector& feedback_nm) {
+  for (size_t i = 0; i < arm_.joints(); ++i) {
+    operator_nm_[i] = config_.hand_stiffness_nm_per_rad * (target_q_[i] - measured_.q_rad[i]) +
+                      config_.hand_damping_nms_per_rad * (target_dq_[i] - measured_.dq_radps[i]);
+    applied_[i] = operator_nm_[i] + feedback_nm[i];
+  }
+  return arm_.write(applied_) == follower::HardwareStatus::kOk;
+}
+
+}  // namespace teleop::leader
