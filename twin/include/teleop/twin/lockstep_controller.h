@@ -33,7 +33,8 @@ class LockstepController {
   /// number of commands sent.
   uint64_t run();
 
-  /// The command for state `state` at step `step` (1-based). Pure.
+  /// The command for state `state` at step `step` (1-based): a function of the two and of the first
+  /// state seen. Sizes the command's sequences (allocates on the first call; not a 1 kHz loop).
   void compute(const msg::JointState& state, uint64_t step, msg::JointCommand& command);
 
  private:
