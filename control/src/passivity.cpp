@@ -9,7 +9,10 @@ namespace teleop::control {
 namespace {
 
 const PassivityPortConfig& validated(const PassivityPortConfig& config) {
-  // channels are checked by RemoteEnergy with the same bound
+  if (config.channels == 0 || config.channels > kMaxTdpaChannels) {
+    throw std::invalid_argument("PassivityPortConfig.channels must be 1.." + std::to_string(kMaxTdpaChannels) +
+                                ", got " + std::to_string(config.channels));
+  }
   if (!(config.cycle_s > 0.0) || !std::isfinite(config.cycle_s)) {
     throw std::invalid_argument("PassivityPortConfig.cycle_s must be finite and > 0, got " +
                                 std::to_string(config.cycle_s));

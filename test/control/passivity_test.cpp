@@ -162,7 +162,9 @@ TEST(PassivityPort, RejectsBadConfigurationNamingTheField) {
             std::string::npos);
   config = one_channel(PortCausality::kForceOutput);
   config.channels = 17;
-  EXPECT_NE(teleop::test::error_of<std::invalid_argument>([&] { PassivityPort p(config); }).find("channels"),
+  EXPECT_NE(teleop::test::error_of<std::invalid_argument>([&] {
+              PassivityPort p(config);
+            }).find("PassivityPortConfig.channels"),
             std::string::npos);
 }
 
