@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "process_helpers.h"
+#include "report_counter.h"
 #include "teleop/common/clock.h"
 #include "teleop/runtime/node_report.h"
 #include "teleop/transport/participant.h"
@@ -16,14 +17,6 @@
 
 namespace teleop::test {
 namespace {
-
-double counter(const runtime::NodeReport& r, const std::string& name) {
-  for (const auto& [n, v] : r.counters) {
-    if (n == name) return v;
-  }
-  ADD_FAILURE() << "no counter " << name;
-  return -1;
-}
 
 struct Pair {
   std::string dir = make_temp_dir();

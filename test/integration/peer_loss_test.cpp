@@ -4,18 +4,11 @@
 #include <csignal>
 
 #include "process_helpers.h"
+#include "report_counter.h"
 #include "teleop/runtime/node_report.h"
 
 namespace teleop::test {
 namespace {
-
-double counter(const runtime::NodeReport& r, const std::string& name) {
-  for (const auto& [n, v] : r.counters) {
-    if (n == name) return v;
-  }
-  ADD_FAILURE() << "no counter " << name;
-  return -1;
-}
 
 struct Pair {
   std::string dir = make_temp_dir();

@@ -9,20 +9,13 @@
 
 #include "node_harness.h"
 #include "process_helpers.h"
+#include "report_counter.h"
 #include "teleop/common/clock.h"
 #include "teleop/runtime/node_report.h"
 #include "teleop/transport/subscription.h"
 
 namespace teleop::test {
 namespace {
-
-double counter(const runtime::NodeReport& r, const std::string& name) {
-  for (const auto& [key, value] : r.counters) {
-    if (key == name) return value;
-  }
-  ADD_FAILURE() << "no counter " << name;
-  return -1;
-}
 
 // one lock-step run of `steps`; returns the trajectory file's text
 std::string lockstep_run(int steps) {
