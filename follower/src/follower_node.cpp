@@ -93,13 +93,12 @@ void FollowerNode::take_commands(int64_t now_ns) {
 
 bool FollowerNode::source_lost() const {
   // a writer whose liveliness lapsed since its last command: dead or cut off, do not wait for the timeout
+  const auto lapsed = [&](const auto& subscription) {
+    return subscription.reader().liveliness_lost() > liveliness_lost_at_command_ && subscription.reader().alive_writers() == 0;
+  };
   switch (source_) {
-    case Source::kJoint:
-      return joint_commands_.reader().liveliness_lost() > liveliness_lost_at_command_ &&
-             joint_commands_.reader().alive_writers() == 0;
-    case Source::kCartesian:
-      return cartesian_commands_.reader().liveliness_lost() > liveliness_lost_at_command_ &&
-             cartesian_commands_.reader().alive_writers() == 0;
+    case Source::kJoint: return lapsed(joint_commands_);
+    case Source::kCartesian: return lapsed(cartesian_commands_);
     case Source::kNone: break;
   }
   return false;
@@ -168,13 +167,7 @@ void FollowerNode::publish_state() {
 
   const control::Vector6& w = control_.wrench();
   peak_external_force_n_ = std::max(peak_external_force_n_, w.head<3>().norm());
-  auto& out = wrench_pub_.sample();
-  out.force_n().x(w[0]);
-  out.force_n().y(w[1]);
-  out.force_n().z(w[2]);
-  out.torque_nm().x(w[3]);
-  out.torque_nm().y(w[4]);
-  out.torque_nm().z(w[5]);
+  transport::set_wrench(wrench_pub_.sample(), w.data(), w.data() + 3);
   wrench_pub_.publish();
 }
 

@@ -22,16 +22,7 @@ MujocoHardware::MujocoHardware(const MujocoHardwareConfig& config)
   name_ = "mujoco:" + std::filesystem::path(config.model_path).filename().string();
 
   // the arm: hinge joints driven by actuators, in actuator order
-  for (int a = 0; a < m->nu; ++a) {
-    const int joint = m->actuator_trnid[2 * a];
-    if (m->actuator_trntype[a] != mjTRN_JOINT || m->jnt_type[joint] != mjJNT_HINGE) continue;
-    if (joints_ == kMaxJoints) throw std::runtime_error(config.model_path + ": more than 32 actuated joints");
-    dof_[joints_] = m->jnt_dofadr[joint];
-    qpos_[joints_] = m->jnt_qposadr[joint];
-    actuator_[joints_] = a;
-    ++joints_;
-  }
-  if (joints_ == 0) throw std::runtime_error(config.model_path + ": no actuated hinge joint");
+  arm_ = sim::find_actuated_joints(m, config.model_path);
 
   const double steps = config.period_s / m->opt.timestep;
   substeps_ = static_cast<int>(std::lround(steps));
@@ -40,7 +31,7 @@ MujocoHardware::MujocoHardware(const MujocoHardwareConfig& config)
                              " s does not divide the control period " + std::to_string(config.period_s) + " s");
   }
   const int site = mj_name2id(m, mjOBJ_SITE, "ee_site");
-  ee_body_ = site >= 0 ? m->site_bodyid[site] : m->jnt_bodyid[m->actuator_trnid[2 * actuator_[joints_ - 1]]];
+  ee_body_ = site >= 0 ? m->site_bodyid[site] : m->jnt_bodyid[m->actuator_trnid[2 * arm_.actuator[arm_.count - 1]]];
   mj_forward(m, sim_.data());
 }
 
@@ -52,16 +43,16 @@ void MujocoHardware::compute_gravity() {
   mj_kinematics(m, rest_.get());
   mj_comPos(m, rest_.get());
   mj_rne(m, rest_.get(), 0, rest_->qfrc_bias);
-  for (size_t i = 0; i < joints_; ++i) gravity_nm_[i] = rest_->qfrc_bias[dof_[i]];
+  for (size_t i = 0; i < arm_.count; ++i) gravity_nm_[i] = rest_->qfrc_bias[arm_.dof[i]];
 }
 
 HardwareStatus MujocoHardware::write(const JointVector& tau_nm) {
   const mjModel* m = sim_.model();
   mjData* d = sim_.data();
   compute_gravity();
-  for (size_t i = 0; i < joints_; ++i) {
+  for (size_t i = 0; i < arm_.count; ++i) {
     if (!std::isfinite(tau_nm[i])) return HardwareStatus::kFault;
-    d->ctrl[actuator_[i]] = tau_nm[i] + gravity_nm_[i];
+    d->ctrl[arm_.actuator[i]] = tau_nm[i] + gravity_nm_[i];
   }
   for (int s = 0; s < substeps_; ++s) mj_step(m, d);
   return HardwareStatus::kOk;
@@ -99,8 +90,8 @@ HardwareLimits MujocoHardware::limits() const {
   const mjModel* m = sim_.model();
   constexpr double kInf = std::numeric_limits<double>::infinity();
   HardwareLimits l;
-  for (size_t i = 0; i < joints_; ++i) {
-    const int a = actuator_[i];
+  for (size_t i = 0; i < arm_.count; ++i) {
+    const int a = arm_.actuator[i];
     const int joint = m->actuator_trnid[2 * a];
     const bool limited = m->jnt_limited[joint] != 0;
     l.q_min_rad[i] = limited ? m->jnt_range[2 * joint] : -kInf;
@@ -116,12 +107,12 @@ HardwareLimits MujocoHardware::limits() const {
 
 HardwareStatus MujocoHardware::read(ArmState& state) {
   const mjData* d = sim_.data();
-  for (size_t i = 0; i < joints_; ++i) {
-    state.q_rad[i] = d->qpos[qpos_[i]];
-    state.dq_radps[i] = d->qvel[dof_[i]];
-    state.tau_measured_nm[i] = d->actuator_force[actuator_[i]];
+  for (size_t i = 0; i < arm_.count; ++i) {
+    state.q_rad[i] = d->qpos[arm_.qpos[i]];
+    state.dq_radps[i] = d->qvel[arm_.dof[i]];
+    state.tau_measured_nm[i] = d->actuator_force[arm_.actuator[i]];
     // contacts and joint limits acting on the joint, from the last step
-    state.tau_ext_nm[i] = d->qfrc_constraint[dof_[i]];
+    state.tau_ext_nm[i] = d->qfrc_constraint[arm_.dof[i]];
   }
   compute_external_wrench(state);
   return HardwareStatus::kOk;

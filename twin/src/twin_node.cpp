@@ -201,13 +201,7 @@ void TwinNode::publish_observations() {
   for (size_t i = 0; i < wrench_pubs_.size(); ++i) {
     const Wrench w = sim_.contact_wrench(i);
     peak_contact_force_n_ = std::max(peak_contact_force_n_, norm3(w.force_n));
-    auto& sample = wrench_pubs_[i]->sample();
-    sample.force_n().x(w.force_n[0]);
-    sample.force_n().y(w.force_n[1]);
-    sample.force_n().z(w.force_n[2]);
-    sample.torque_nm().x(w.torque_nm[0]);
-    sample.torque_nm().y(w.torque_nm[1]);
-    sample.torque_nm().z(w.torque_nm[2]);
+    transport::set_wrench(wrench_pubs_[i]->sample(), w.force_n.data(), w.torque_nm.data());
     wrench_pubs_[i]->publish();
   }
 }

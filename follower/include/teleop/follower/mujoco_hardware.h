@@ -5,6 +5,7 @@
 #include <string>
 
 #include "teleop/follower/robot_hardware.h"
+#include "teleop/sim/actuated_joints.h"
 #include "teleop/sim/mujoco_model.h"
 
 namespace teleop::follower {
@@ -24,7 +25,7 @@ class MujocoHardware final : public RobotHardware {
   /// joints driven by its motor actuators, in actuator order.
   explicit MujocoHardware(const MujocoHardwareConfig& config);
 
-  size_t joints() const override { return joints_; }
+  size_t joints() const override { return arm_.count; }
   [[nodiscard]] HardwareStatus read(ArmState& state) override;
   [[nodiscard]] HardwareStatus write(const JointVector& tau_nm) override;
   const char* name() const override { return name_.c_str(); }
@@ -43,12 +44,9 @@ class MujocoHardware final : public RobotHardware {
   // a second data for gravity: the same pose at rest, so the simulation itself is not disturbed
   std::unique_ptr<mjData, void (*)(mjData*)> rest_;
   std::string name_;
-  size_t joints_ = 0;
+  sim::ActuatedJoints arm_;
   int substeps_ = 1;
   JointVector gravity_nm_{};
-  std::array<int, kMaxJoints> dof_{};  // qvel/qfrc index of each arm joint
-  std::array<int, kMaxJoints> qpos_{};
-  std::array<int, kMaxJoints> actuator_{};
   int ee_body_ = -1;
 };
 

@@ -24,6 +24,16 @@ inline void copy_joints(const JointVector& in, size_t n, std::vector<double>& ou
   return true;
 }
 
+/// Writes a force [N] and a moment [N m] (x, y, z each) into a WrenchStamped.
+inline void set_wrench(msg::WrenchStamped& out, const double* force_n, const double* torque_nm) {
+  out.force_n().x(force_n[0]);
+  out.force_n().y(force_n[1]);
+  out.force_n().z(force_n[2]);
+  out.torque_nm().x(torque_nm[0]);
+  out.torque_nm().y(torque_nm[1]);
+  out.torque_nm().z(torque_nm[2]);
+}
+
 /// Sizes every sequence of a sample once at setup so that the loop never allocates.
 template <typename... Seq>
 void presize(size_t n, Seq&... sequences) {
