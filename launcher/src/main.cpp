@@ -24,6 +24,10 @@ int main(int argc, char** argv) {
   launch_cmd->add_option("--seed", options.seed, "seed of the impairment decisions (printed, so a run can be repeated)");
   launch_cmd->add_option("--report-dir", options.report_dir, "directory for the nodes' reports (default: a new one in /tmp)");
   launch_cmd->add_option("--bin-dir", options.bin_dir, "directory of the node executables (default: next to teleop)");
+  launch_cmd->add_option("--set", options.sets,
+                         "override a value in one node's config: NODE:KEY=VALUE, e.g. "
+                         "leader:teleoperation.architecture=pfc_tdpa; repeatable");
+  launch_cmd->add_option("--trace-dir", options.trace_dir, "each node writes its time trace to DIR/<node>.csv");
   std::vector<std::string> profiles;
   std::string csv_path = "sweep.csv";
   CLI::App* sweep_cmd =
