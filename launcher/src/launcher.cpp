@@ -87,6 +87,10 @@ std::vector<RunningNode> start_nodes(const Scenario& scenario, const LaunchOptio
     if (!options.trace_dir.empty()) {
       argv.push_back("--trace");
       argv.push_back((fs::path(options.trace_dir) / (spec.name + ".csv")).string());
+      if (options.trace_seconds) {
+        argv.push_back("--trace-seconds");
+        argv.push_back(std::to_string(*options.trace_seconds));
+      }
     }
     argv.insert(argv.end(), spec.args.begin(), spec.args.end());
     std::printf("[launch  ] starting %s: %s --config %s\n", spec.name.c_str(), argv[0].c_str(), spec.config.c_str());

@@ -29,6 +29,8 @@ struct LaunchOptions {
   std::vector<std::string> sets;
   /// Where each node writes its time trace (`<trace_dir>/<node name>.csv`); empty: no traces.
   std::string trace_dir;
+  /// Seconds of trace each node keeps (`--trace-seconds`); default: the node's own.
+  std::optional<double> trace_seconds;
 };
 
 struct LaunchResult {
