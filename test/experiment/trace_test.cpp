@@ -1,0 +1,58 @@
+// Reading trace CSVs: what TraceRecorder writes, and clear errors for broken files.
+#include "teleop/experiment/trace.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "teleop/runtime/trace_recorder.h"
+#include "test_helpers.h"
+
+namespace teleop::experiment {
+namespace {
+
+std::string error_of(const std::function<void()>& f) { return test::error_of<TraceError>(f); }
+
+TEST(ReadTrace, ReadsWhatTheRecorderWrites) {
+  runtime::TraceRecorder recorder({"q_0", "q_1", "w"}, 10);
+  double* row = recorder.begin_row(12'345'678'901'234);
+  row[0] = 0.125;
+  row[1] = -1e-9;
+  recorder.begin_row(12'345'679'901'234)[0] = 2.0;  // the rest NaN
+  test::TempDir dir("read_trace");
+  recorder.write_csv(dir.path("t.csv"));
+  const Trace t = read_trace(dir.path("t.csv"));
+  ASSERT_EQ(t.t_s.size(), 2u);
+  EXPECT_DOUBLE_EQ(t.t_s[0], 12345.678901234);
+  EXPECT_DOUBLE_EQ(t.column("q_0")[0], 0.125);
+  EXPECT_DOUBLE_EQ(t.column("q_1")[0], -1e-9);
+  EXPECT_DOUBLE_EQ(t.column("q_0")[1], 2.0);
+  EXPECT_TRUE(std::isnan(t.column("w")[1]));
+  EXPECT_EQ(t.numbered("q_").size(), 2u);
+}
+
+TEST(ReadTrace, NamesTheFileAndColumnWhenAColumnIsMissing) {
+  test::TempDir dir("read_trace_column");
+  const Trace t = read_trace(dir.write("leader.csv", "t_s,a\n1,2\n"));
+  EXPECT_EQ(error_of([&] { t.column("x_cmd_x"); }), dir.path("leader.csv") + ": no column 'x_cmd_x'");
+  EXPECT_EQ(error_of([&] { t.numbered("q_"); }), dir.path("leader.csv") + ": no column 'q_0'");
+}
+
+TEST(ReadTrace, NamesTheFileAndLineOfBrokenContent) {
+  test::TempDir dir("read_trace_bad");
+  EXPECT_NE(error_of([&] { read_trace(dir.path("absent.csv")); }).find(dir.path("absent.csv") + ": cannot open"),
+            std::string::npos);
+  EXPECT_EQ(error_of([&] { read_trace(dir.write("e.csv", "")); }),
+            dir.path("e.csv") + ": empty file, expected a header 't_s,<columns>'");
+  EXPECT_EQ(error_of([&] { read_trace(dir.write("h.csv", "time,a\n")); }),
+            dir.path("h.csv") + ":1: the first column must be 't_s', got 'time'");
+  EXPECT_EQ(error_of([&] { read_trace(dir.write("n.csv", "t_s,a\n1,2\n2\n")); }),
+            dir.path("n.csv") + ":3: 1 cells, the header has 2");
+  EXPECT_EQ(error_of([&] { read_trace(dir.write("v.csv", "t_s,a\n1,2x\n")); }),
+            dir.path("v.csv") + ":2: a: '2x' is not a number");
+  EXPECT_EQ(error_of([&] { read_trace(dir.write("t.csv", "t_s,a\nnan,1\n")); }),
+            dir.path("t.csv") + ":2: t_s: 'nan' is not a time");
+}
+
+}  // namespace
+}  // namespace teleop::experiment
