@@ -82,6 +82,11 @@ std::string make_report_dir(const std::string& requested, const std::string& nam
   return pattern;
 }
 
+// a profile given as a file gets the folder of its name without the directories
+std::string profile_folder(const std::string& profile) {
+  return profile.find('/') == std::string::npos ? profile : fs::path(profile).stem().string();
+}
+
 void write_text(const std::string& path, const std::string& text) {
   std::ofstream out(path);
   out << text;
@@ -102,7 +107,8 @@ RunRow analyse_run(const std::string& run, const std::string& profile, const std
     if (launched_ok) row.status = "error";
     row.note = e.what();
   }
-  if (!launched_ok && row.note.empty()) row.note = "a node failed to start, run or stop cleanly (see its log above)";
+  // the failure explains a missing trace, not the other way round
+  if (!launched_ok) row.note = "a node failed to start, run or stop cleanly (see its log above)";
   return row;
 }
 
@@ -127,7 +133,7 @@ ExperimentResult run_experiment(const ExperimentConfig& config, const Experiment
       domain = domain >= kMaxDomain ? 0 : domain + 1;
       launch.network = profile == "none" ? "" : profile;
       launch.seed = config.seed;
-      launch.report_dir = (fs::path(result.report_dir) / run.spec->name / profile).string();
+      launch.report_dir = (fs::path(result.report_dir) / run.spec->name / profile_folder(profile)).string();
       launch.trace_dir = launch.report_dir;
       // the whole run and then some: the ring never drops the start the analysis aligns on
       launch.trace_seconds = duration_s + run.scenario.stop_timeout_s + 5.0;

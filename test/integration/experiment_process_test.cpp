@@ -1,0 +1,119 @@
+// `teleop experiment` as a real process: runs x profiles through the launcher, node traces,
+// analysis, table, CSV and exit code.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "process_helpers.h"
+
+namespace teleop::test {
+namespace {
+namespace fs = std::filesystem;
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+std::vector<std::string> cells_of(const std::string& line) {
+  std::vector<std::string> out;
+  std::istringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) out.push_back(cell);
+  return out;
+}
+
+// the CSV cell of `column` in data row `row`
+std::string csv_cell(const std::string& csv, size_t row, const std::string& column) {
+  const auto lines = lines_of(csv);
+  const auto header = cells_of(lines.at(0));
+  const auto it = std::find(header.begin(), header.end(), column);
+  if (it == header.end()) throw std::runtime_error("no column " + column);
+  return cells_of(lines.at(row + 1)).at(static_cast<size_t>(it - header.begin()));
+}
+
+ProcessResult run_experiment(const std::string& file, const std::string& report_dir) {
+  return run_process({bin("teleop"), "experiment", file, "--report-dir", report_dir, "--domain",
+                      std::to_string(unique_domain()), "--bin-dir", TELEOP_BIN_DIR},
+                     std::chrono::seconds(120));
+}
+
+// the shipped leader and follower (no trace columns yet): both runs happen, and the analysis
+// says clearly that the traces are missing, with a non-zero exit
+TEST(ExperimentProcess, RunsEveryProfileWithTheRealNodesAndReportsTheirMissingTraces) {
+  const std::string dir = make_temp_dir();
+  write_file(dir + "/scenario.yaml",
+             "scenario: {name: scripted, duration_s: 2}\nnodes:\n"
+             "  - {name: follower, executable: teleop_follower, config: " + source("config/nodes/follower.yaml") + "}\n"
+             "  - {name: leader, executable: teleop_leader, config: " + source("config/nodes/leader.yaml") +
+             ", set: {leader.frequency_hz: 1.0}}\n");
+  write_file(dir + "/e.yaml", "experiment:\n  name: tiny\n  duration_s: 2\n  seed: 7\n  profiles: [none, wan-35ms]\n"
+                              "  runs:\n    - {name: scripted, scenario: scenario.yaml}\n"
+                              "  analysis: {settle_s: 0.5, hold_window_s: [1.0, 2.0]}\n");
+  const ProcessResult r = run_experiment(dir + "/e.yaml", dir + "/out");
+  EXPECT_EQ(r.exit_status, 1) << r.output;
+  for (const std::string profile : {"none", "wan-35ms"}) {
+    // the run happened: both nodes ran and reported, under the run's own folder
+    EXPECT_TRUE(fs::exists(dir + "/out/scripted/" + profile + "/leader.yaml")) << profile << r.output;
+    EXPECT_TRUE(fs::exists(dir + "/out/scripted/" + profile + "/follower.yaml")) << profile << r.output;
+    EXPECT_NE(r.output.find("scripted / " + profile + ": error: " + dir + "/out/scripted/" + profile +
+                            "/leader.csv: cannot open the trace"),
+              std::string::npos)
+        << r.output;
+  }
+  EXPECT_NE(r.output.find("leader: this node has no trace columns"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("link to * (wan-35ms, seed 7)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("RESULT: FAILED (2 runs failed or could not be analysed"), std::string::npos) << r.output;
+  const std::string csv = read_file(dir + "/out/tiny.csv");
+  EXPECT_EQ(lines_of(csv).size(), 3u) << csv;
+  EXPECT_EQ(csv_cell(csv, 0, "profile"), "none");
+  EXPECT_EQ(csv_cell(csv, 0, "status"), "error");
+  EXPECT_EQ(csv_cell(csv, 1, "profile"), "wan-35ms");
+  EXPECT_EQ(csv_cell(csv, 1, "status"), "error");
+}
+
+// two processes trace on one clock; the analysis finds the offsets the test node builds in, and a
+// run whose node fails is a 'failed' row and a non-zero exit
+TEST(ExperimentProcess, AnalysesTracesOfTwoProcessesAndKeepsAFailedRunAsARow) {
+  const std::string dir = make_temp_dir();
+  const std::string transport = "transport: {domain_id: 42, udpv4: true, shm: false}\n";
+  write_file(dir + "/leader.yaml", "node: {name: leader}\n" + transport + "synthetic: {role: leader}\n");
+  write_file(dir + "/follower.yaml", "node: {name: follower}\n" + transport + "synthetic: {role: follower}\n");
+  const std::string nodes = "nodes:\n"
+                            "  - {name: follower, executable: teleop_synthetic_trace_node, config: follower.yaml}\n"
+                            "  - {name: leader, executable: teleop_synthetic_trace_node, config: leader.yaml";
+  write_file(dir + "/good.yaml", "scenario: {name: good}\n" + nodes + "}\n");
+  write_file(dir + "/broken.yaml", "scenario: {name: broken}\n" + nodes + ", set: {node.bogus: 1}}\n");
+  write_file(dir + "/e.yaml", "experiment:\n  name: synthetic\n  duration_s: 2\n  profiles: [none]\n"
+                              "  runs:\n    - {name: good, scenario: good.yaml}\n"
+                              "    - {name: broken, scenario: broken.yaml}\n"
+                              "  analysis: {settle_s: 0.2, hold_window_s: [0.5, 1.5]}\n");
+  const ProcessResult r = run_experiment(dir + "/e.yaml", dir + "/out");
+  EXPECT_EQ(r.exit_status, 1) << r.output;
+  const std::string csv = read_file(dir + "/out/synthetic.csv");
+  ASSERT_EQ(lines_of(csv).size(), 3u) << csv;
+  EXPECT_EQ(csv_cell(csv, 0, "status"), "ok") << csv;
+  EXPECT_NEAR(std::stod(csv_cell(csv, 0, "tracking_rmse_m")), 0.005, 1e-6) << csv;
+  EXPECT_NEAR(std::stod(csv_cell(csv, 0, "tracking_hold_m")), 0.005, 1e-6) << csv;
+  EXPECT_NEAR(std::stod(csv_cell(csv, 0, "force_error_n")), 10.0, 1e-9) << csv;
+  EXPECT_NEAR(std::stod(csv_cell(csv, 0, "force_exerted_n")), std::sqrt(360.0), 1e-6) << csv;
+  EXPECT_NEAR(std::stod(csv_cell(csv, 0, "mad_rad")), 0.0, 1e-12) << csv;
+  EXPECT_EQ(csv_cell(csv, 0, "saturation_fraction"), "0") << csv;
+  EXPECT_EQ(csv_cell(csv, 0, "tdpa_min_energy_j"), "") << csv;  // no TDPA: all NaN
+  EXPECT_EQ(csv_cell(csv, 0, "stable"), "yes") << csv;
+  EXPECT_EQ(csv_cell(csv, 1, "run"), "broken") << csv;
+  EXPECT_EQ(csv_cell(csv, 1, "status"), "failed") << csv;
+  EXPECT_NE(r.output.find("(--set node.bogus=1): node.bogus: unknown key"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("RESULT: FAILED (1 runs failed"), std::string::npos) << r.output;
+  // the traces themselves: CLOCK_MONOTONIC seconds, the documented header
+  const std::string trace = read_file(dir + "/out/good/none/leader.csv");
+  EXPECT_EQ(lines_of(trace).at(0), "t_s,x_cmd_x,x_cmd_y,x_cmd_z,f_felt_x,f_felt_y,f_felt_z,tdpa_w_j,state");
+  EXPECT_GT(lines_of(trace).size(), 1000u);
+}
+
+}  // namespace
+}  // namespace teleop::test
