@@ -2,6 +2,7 @@
 // What distinguishes the leader, the follower and the twin: their per-cycle work.
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <teleop/msg/status.h>
@@ -24,6 +25,10 @@ class NodeLogic {
   virtual void active_faults(std::vector<uint32_t>& faults) const = 0;
   /// Adds the node's topics and counters to the final report. Called once after the loop.
   virtual void fill_report(NodeReport& report) const = 0;
+  /// Names of the node's trace columns (after t_s); empty: the node has no trace. Called once before the loop.
+  virtual void trace_columns(std::vector<std::string>& /*columns*/) const {}
+  /// This cycle's values, one per column. Real-time safe. Called after each cycle().
+  virtual void trace_row(double* /*row*/) const {}
 };
 
 }  // namespace teleop::runtime
