@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -11,6 +12,19 @@ namespace teleop {
 struct ConfigNode::FileState {
   std::string file;
   std::vector<std::shared_ptr<MappingRecord>> mappings;
+  // dotted key path -> the "--set KEY=VALUE" that put it there (its value and any mapping created
+  // on the way), so errors about it point at the argument instead of a line of the file
+  std::map<std::string, std::string> set_by;
+
+  // the override that set `path` or one of its parents; nullptr when the file did
+  const std::string* override_of(const std::string& path) const {
+    for (std::string p = path;;) {
+      if (auto it = set_by.find(p); it != set_by.end()) return &it->second;
+      const auto dot = p.rfind('.');
+      if (dot == std::string::npos) return nullptr;
+      p.resize(dot);
+    }
+  }
 };
 
 struct ConfigNode::MappingRecord {
@@ -49,7 +63,7 @@ ConfigNode ConfigNode::load_file(const std::string& path) {
     throw ConfigError(path + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
   }
   if (!root.IsMap()) throw ConfigError(path + ": the top level must be a mapping of keys");
-  return ConfigNode(std::make_shared<FileState>(FileState{path, {}}), root, "");
+  return ConfigNode(std::make_shared<FileState>(FileState{path, {}, {}}), root, "");
 }
 
 ConfigNode ConfigNode::load_string(const std::string& text, const std::string& source_name) {
@@ -60,7 +74,50 @@ ConfigNode ConfigNode::load_string(const std::string& text, const std::string& s
     throw ConfigError(source_name + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
   }
   if (!root.IsMap()) throw ConfigError(source_name + ": the top level must be a mapping of keys");
-  return ConfigNode(std::make_shared<FileState>(FileState{source_name, {}}), root, "");
+  return ConfigNode(std::make_shared<FileState>(FileState{source_name, {}, {}}), root, "");
+}
+
+void ConfigNode::apply_override(const std::string& spec) {
+  const auto eq = spec.find('=');
+  const std::string key = spec.substr(0, eq);
+  if (eq == std::string::npos || key.empty() || eq + 1 == spec.size()) {
+    throw ConfigError(state_->file + ": --set " + spec + ": expected KEY=VALUE, e.g. node.duration_s=5");
+  }
+  std::vector<std::string> segments;
+  for (size_t begin = 0;;) {
+    const auto dot = key.find('.', begin);
+    segments.push_back(key.substr(begin, dot - begin));
+    if (segments.back().empty()) throw ConfigError(state_->file + ": --set " + spec + ": empty key segment in '" + key + "'");
+    if (dot == std::string::npos) break;
+    begin = dot + 1;
+  }
+  YAML::Node value;
+  try {
+    value = YAML::Load(spec.substr(eq + 1));
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError(state_->file + ": --set " + spec + ": malformed YAML value: " + e.msg);
+  }
+  // walk (and where missing, create) the mappings down to the last segment; reset() re-seats the
+  // handle, where operator= would overwrite the node it refers to
+  YAML::Node mapping;
+  mapping.reset(node_);
+  std::string path = path_;
+  for (size_t i = 0; i + 1 < segments.size(); ++i) {
+    path = path.empty() ? segments[i] : path + "." + segments[i];
+    YAML::Node next;
+    next.reset(mapping[segments[i]]);
+    if (!next.IsDefined() || next.IsNull()) {
+      const YAML::Node created(YAML::NodeType::Map);
+      mapping[segments[i]] = created;
+      next.reset(created);
+      state_->set_by.emplace(path, spec);
+    } else if (!next.IsMap()) {
+      throw ConfigError(state_->file + ": --set " + spec + ": " + path + " is " + describe(next) + ", not a mapping");
+    }
+    mapping.reset(next);
+  }
+  mapping[segments.back()] = value;
+  state_->set_by[path.empty() ? segments.back() : path + "." + segments.back()] = spec;
 }
 
 ConfigNode::ConfigNode(std::shared_ptr<FileState> state, YAML::Node node, std::string path)
@@ -83,6 +140,11 @@ std::string ConfigNode::key_path(const std::string& key) const {
   return path_.empty() ? key : path_ + "." + key;
 }
 
+std::string ConfigNode::location(const YAML::Mark& mark, const std::string& path) const {
+  if (const std::string* spec = state_->override_of(path)) return state_->file + " (--set " + *spec + ")";
+  return mark.line >= 0 ? state_->file + ":" + std::to_string(mark.line + 1) : state_->file;
+}
+
 ConfigError ConfigNode::error_at(const YAML::Node& where, const std::string& key,
                                  const std::string& problem) const {
   YAML::Mark mark = where.IsDefined() ? where.Mark() : node_.Mark();
@@ -93,9 +155,7 @@ ConfigError ConfigNode::error_at(const YAML::Node& where, const std::string& key
       if (entry.first.IsScalar() && entry.first.Scalar() == key) mark = entry.first.Mark();
     }
   }
-  std::string location = state_->file;
-  if (mark.line >= 0) location += ":" + std::to_string(mark.line + 1);
-  return ConfigError(location + ": " + key_path(key) + ": " + problem);
+  return ConfigError(location(mark, key_path(key)) + ": " + key_path(key) + ": " + problem);
 }
 
 ConfigError ConfigNode::error(const std::string& key, const std::string& problem) const {
@@ -193,6 +253,12 @@ double ConfigNode::get_double(const std::string& key, Range range, double fallba
   return lookup(key).IsDefined() ? get_double(key, range) : (record_->used.insert(key), fallback);
 }
 
+std::string ConfigNode::get_yaml(const std::string& key) const {
+  YAML::Emitter out;
+  out << YAML::Flow << require(key);
+  return out.c_str();
+}
+
 std::string ConfigNode::get_path(const std::string& key) const {
   const std::filesystem::path given(get_string(key));
   const std::filesystem::path path =
@@ -261,8 +327,7 @@ void ConfigNode::check_all_used() const {
       const auto key = entry.first.as<std::string>();
       if (mapping->used.count(key) == 0) {
         const std::string path = mapping->path.empty() ? key : mapping->path + "." + key;
-        throw ConfigError(state_->file + ":" + std::to_string(entry.first.Mark().line + 1) + ": " + path +
-                          ": unknown key");
+        throw ConfigError(location(entry.first.Mark(), path) + ": " + path + ": unknown key");
       }
     }
   }

@@ -3,6 +3,7 @@
 #include <poll.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -11,6 +12,7 @@
 #include <stdexcept>
 
 #include "teleop/common/clock.h"
+#include "teleop/common/config.h"
 #include "teleop/launcher/child_process.h"
 #include "teleop/launcher/status_monitor.h"
 #include "teleop/runtime/shutdown_signal.h"
@@ -78,6 +80,18 @@ std::vector<RunningNode> start_nodes(const Scenario& scenario, const LaunchOptio
       argv.push_back("--seed");
       argv.push_back(std::to_string(*options.seed));
     }
+    for (const std::string& set : node_overrides(scenario, spec, options.sets)) {
+      argv.push_back("--set");
+      argv.push_back(set);
+    }
+    if (!options.trace_dir.empty()) {
+      argv.push_back("--trace");
+      argv.push_back((fs::path(options.trace_dir) / (spec.name + ".csv")).string());
+      if (options.trace_seconds) {
+        argv.push_back("--trace-seconds");
+        argv.push_back(std::to_string(*options.trace_seconds));
+      }
+    }
     argv.insert(argv.end(), spec.args.begin(), spec.args.end());
     std::printf("[launch  ] starting %s: %s --config %s\n", spec.name.c_str(), argv[0].c_str(), spec.config.c_str());
     nodes.push_back({&spec, ChildProcess::spawn(argv), report});
@@ -129,6 +143,24 @@ bool stop_nodes(std::vector<RunningNode>& nodes, StatusMonitor& monitor, double 
 
 }  // namespace
 
+std::vector<std::string> node_overrides(const Scenario& scenario, const NodeLaunch& node,
+                                        const std::vector<std::string>& sets) {
+  std::vector<std::string> out = node.sets;
+  for (const std::string& set : sets) {
+    const auto colon = set.find(':');
+    const auto eq = set.find('=');
+    if (colon == std::string::npos || colon == 0 || eq == std::string::npos || eq < colon) {
+      throw ConfigError("--set " + set + ": expected NODE:KEY=VALUE, e.g. leader:node.rate_hz=500");
+    }
+    const std::string target = set.substr(0, colon);
+    const bool known = std::any_of(scenario.nodes.begin(), scenario.nodes.end(),
+                                   [&](const NodeLaunch& n) { return n.name == target; });
+    if (!known) throw ConfigError("--set " + set + ": scenario " + scenario.name + " has no node '" + target + "'");
+    if (target == node.name) out.push_back(set.substr(colon + 1));
+  }
+  return out;
+}
+
 std::string find_executable(const std::string& name, const std::string& bin_dir) {
   if (name.find('/') != std::string::npos) {
     if (is_executable(name)) return name;
@@ -158,6 +190,9 @@ LaunchResult launch(const Scenario& scenario, const LaunchOptions& options) {
   result.report_dir = make_report_dir(options.report_dir);
   const double duration_s = options.duration_s.value_or(scenario.duration_s);
   runtime::install_shutdown_handlers();
+  // bad overrides fail here, before any node starts
+  for (const auto& node : scenario.nodes) node_overrides(scenario, node, options.sets);
+  if (!options.trace_dir.empty()) fs::create_directories(options.trace_dir);
 
   StatusMonitor monitor(scenario_domain(scenario.nodes.front().config, options.domain_id), [](const std::string& line) {
     std::printf("[status  ] %s\n", line.c_str());

@@ -1,9 +1,12 @@
-// teleop: command-line entry point. `teleop launch scenario.yaml` runs a scenario.
+// teleop: command-line entry point. `teleop launch scenario.yaml` runs a scenario, `teleop sweep`
+// one scenario under several network profiles, `teleop experiment` runs x profiles with metrics.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
 
 #include "teleop/common/config.h"
+#include "teleop/experiment/experiment_runner.h"
+#include "teleop/experiment/results_table.h"
 #include "teleop/launcher/launcher.h"
 #include "teleop/launcher/sweep.h"
 
@@ -24,6 +27,10 @@ int main(int argc, char** argv) {
   launch_cmd->add_option("--seed", options.seed, "seed of the impairment decisions (printed, so a run can be repeated)");
   launch_cmd->add_option("--report-dir", options.report_dir, "directory for the nodes' reports (default: a new one in /tmp)");
   launch_cmd->add_option("--bin-dir", options.bin_dir, "directory of the node executables (default: next to teleop)");
+  launch_cmd->add_option("--set", options.sets,
+                         "override a value in one node's config: NODE:KEY=VALUE, e.g. "
+                         "leader:teleoperation.architecture=pfc_tdpa; repeatable");
+  launch_cmd->add_option("--trace-dir", options.trace_dir, "each node writes its time trace to DIR/<node>.csv");
   std::vector<std::string> profiles;
   std::string csv_path = "sweep.csv";
   CLI::App* sweep_cmd =
@@ -38,12 +45,38 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("--seed", options.seed, "seed of the impairment decisions");
   sweep_cmd->add_option("--report-dir", options.report_dir, "keep each run's node reports under DIR/<profile>");
   sweep_cmd->add_option("--bin-dir", options.bin_dir, "directory of the node executables");
+  std::string experiment_path;
+  teleop::experiment::ExperimentOptions experiment_options;
+  CLI::App* experiment_cmd = app.add_subcommand(
+      "experiment", "run every run x network profile of an experiment file, analyse the traces, print a table + CSV");
+  experiment_cmd->add_option("experiment", experiment_path, "experiment YAML file")->required()->check(CLI::ExistingFile);
+  experiment_cmd->add_option("--profiles", experiment_options.profiles, "only these network profiles (comma-separated)")
+      ->delimiter(',');
+  experiment_cmd->add_option("--runs", experiment_options.runs, "only these runs (comma-separated names)")->delimiter(',');
+  experiment_cmd->add_option("-d,--duration", experiment_options.duration_s, "seconds of each run (overrides the file)")
+      ->check(CLI::PositiveNumber);
+  experiment_cmd->add_option("--csv", experiment_options.csv_path, "results CSV (default: <report dir>/<name>.csv)");
+  experiment_cmd->add_option("--report-dir", experiment_options.report_dir,
+                             "traces and node reports under DIR/<run>/<profile>/ (default: a new folder in /tmp)");
+  experiment_cmd->add_option("--bin-dir", experiment_options.bin_dir, "directory of the node executables");
+  experiment_cmd->add_option("--domain", experiment_options.domain_id,
+                             "DDS domain of the first run; each further run takes the next (default 60)")
+      ->check(CLI::Range(0, 232));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   try {
+    if (experiment_cmd->parsed()) {
+      using namespace teleop::experiment;
+      const ExperimentConfig config = load_experiment(experiment_path);
+      const ExperimentResult result = run_experiment(config, experiment_options);
+      std::printf("%s", format_table(result.rows, config.name).c_str());
+      std::printf("\nresults: %s\ntraces and reports: %s\n", result.csv_path.c_str(), result.report_dir.c_str());
+      if (result.failures > 0) std::printf("RESULT: FAILED (%d runs failed or could not be analysed, see above)\n", result.failures);
+      return result.failures > 0 ? 1 : 0;
+    }
     const Scenario scenario = load_scenario(scenario_path);
     if (sweep_cmd->parsed()) return sweep(scenario, options, profiles, csv_path).failed_runs == 0 ? 0 : 1;
     const LaunchResult result = launch(scenario, options);

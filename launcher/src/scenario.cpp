@@ -27,6 +27,9 @@ Scenario load_scenario(const std::string& path) {
     node.config = (config.is_absolute() ? config : base / config).lexically_normal().string();
     if (!fs::exists(node.config)) throw n.error("config", "file " + node.config + " does not exist");
     node.args = n.get_string_list("args");
+    if (const auto set = n.optional_child("set")) {
+      for (const std::string& key : set->keys()) node.sets.push_back(key + "=" + set->get_yaml(key));
+    }
     scenario.nodes.push_back(std::move(node));
   }
   if (scenario.nodes.empty()) throw root.error("nodes", "a scenario needs at least one node");

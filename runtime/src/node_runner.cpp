@@ -13,6 +13,7 @@
 #include "teleop/runtime/shutdown_signal.h"
 #include "teleop/runtime/status_names.h"
 #include "teleop/runtime/status_publisher.h"
+#include "teleop/runtime/trace_recorder.h"
 #include "teleop/transport/participant_config.h"
 
 namespace teleop::runtime {
@@ -26,6 +27,9 @@ struct CommandLine {
   std::string log_level = "info";
   std::vector<std::string> impair;
   std::optional<uint64_t> seed;
+  std::vector<std::string> sets;
+  std::string trace_path;
+  std::optional<double> trace_seconds;
 };
 
 // "--impair PEER=PROFILE": impair the link to PEER ("*": every peer) with PROFILE
@@ -52,7 +56,8 @@ struct Setup {
 };
 
 Setup load_setup(const CommandLine& cli, const NodeDescription& description) {
-  const ConfigNode root = ConfigNode::load_file(cli.config_path);
+  ConfigNode root = ConfigNode::load_file(cli.config_path);
+  for (const std::string& spec : cli.sets) root.apply_override(spec);
   Setup setup{parse_node_config(root.child("node"), description.role_name), {}, {}};
   setup.transport = transport::parse_participant_config(root.child("transport"), setup.node.name);
   setup.build = description.parse(root);
@@ -79,8 +84,27 @@ void log_summary(const NodeReport& r) {
   }
 }
 
-// the fixed-rate loop; returns the pacer statistics of the run
-void run_loop(const NodeConfig& node, NodeLogic& logic, StatusPublisher& status, RatePacer& pacer) {
+// the trace recorder when --trace asks for one and the logic has columns; sized for the most recent
+// --trace-seconds (default: the run's duration, else 60 s)
+std::unique_ptr<TraceRecorder> make_trace_recorder(const CommandLine& cli, const NodeConfig& node,
+                                                   const NodeLogic& logic) {
+  if (cli.trace_path.empty()) return nullptr;
+  std::vector<std::string> columns;
+  logic.trace_columns(columns);
+  if (columns.empty()) {
+    spdlog::info("{}: this node has no trace columns: --trace {} writes nothing", node.name, cli.trace_path);
+    return nullptr;
+  }
+  const double seconds = cli.trace_seconds.value_or(node.duration_s > 0 ? node.duration_s : 60.0);
+  const auto rows = static_cast<uint64_t>(std::ceil(seconds * node.rate_hz)) + 1;
+  spdlog::info("{}: tracing {} columns, the most recent {} rows ({:.1f} s), into {}", node.name, columns.size(), rows,
+               seconds, cli.trace_path);
+  return std::make_unique<TraceRecorder>(std::move(columns), rows);
+}
+
+// the fixed-rate loop; `trace` (may be null) gets one row per cycle
+void run_loop(const NodeConfig& node, NodeLogic& logic, StatusPublisher& status, RatePacer& pacer,
+              TraceRecorder* trace) {
   const int64_t start_ns = monotonic_now_ns();
   const int64_t end_ns = node.duration_s > 0 ? start_ns + static_cast<int64_t>(node.duration_s * 1e9) : INT64_MAX;
   pacer.start();
@@ -88,6 +112,7 @@ void run_loop(const NodeConfig& node, NodeLogic& logic, StatusPublisher& status,
     const CycleTick tick = pacer.wait_next();
     if (shutdown_requested() || tick.now_ns >= end_ns) break;
     logic.cycle(tick);
+    if (trace != nullptr) logic.trace_row(trace->begin_row(tick.now_ns));
     status.maybe_publish(tick, logic, pacer.stats());
   }
 }
@@ -101,11 +126,13 @@ int run(const CommandLine& cli, const NodeDescription& description) {
                setup.transport.security.enabled() ? "on" : "off");
 
   NodeReport report;
+  std::unique_ptr<TraceRecorder> trace;
   int64_t started_ns = monotonic_now_ns();
   {
     transport::Participant participant(setup.transport);
     NodeContext context{node, participant};
     std::unique_ptr<NodeLogic> logic = setup.build(context);
+    trace = make_trace_recorder(cli, node, *logic);
     StatusPublisher status(participant, node.name, description.role, node.rate_hz, node.status_rate_hz);
     MonotonicClock clock;
     RatePacer pacer(clock, node.period_ns(), node.max_catch_up_cycles);
@@ -115,7 +142,7 @@ int run(const CommandLine& cli, const NodeDescription& description) {
       spdlog::warn("{}: running without real-time scheduling: {}", node.name, problem);
     }
     started_ns = monotonic_now_ns();
-    run_loop(node, *logic, status, pacer);
+    run_loop(node, *logic, status, pacer, trace.get());
     // bounded, so that shutdown stays well inside 100 ms even with a dead status reader
     status.publish_stopping(*logic, pacer.stats(), 50 * kNsPerMs);
 
@@ -126,6 +153,7 @@ int run(const CommandLine& cli, const NodeDescription& description) {
     report.run_time_s = static_cast<double>(monotonic_now_ns() - started_ns) * 1e-9;
     report.add_loop(pacer.stats());
     logic->fill_report(report);
+    if (trace) report.counters.emplace_back("trace_rows_dropped", static_cast<double>(trace->rows_dropped()));
     report.add_links(participant);
   }  // the participant and all its entities are deleted here
   if (const int64_t signalled = shutdown_requested_at_ns(); signalled > 0) {
@@ -133,6 +161,12 @@ int run(const CommandLine& cli, const NodeDescription& description) {
     spdlog::info("{}: shut down {:.1f} ms after the signal", node.name, report.shutdown_ms);
   }
   log_summary(report);
+  // after the loop and the shutdown measurement: writing is slow and never on the control path
+  if (trace) {
+    trace->write_csv(cli.trace_path);
+    spdlog::info("{}: wrote {} trace rows ({} dropped) to {}", node.name, trace->rows(), trace->rows_dropped(),
+                 cli.trace_path);
+  }
   if (!cli.report_path.empty()) write_report(report, cli.report_path);
   return 0;
 }
@@ -151,6 +185,13 @@ int run_node(int argc, char** argv, const NodeDescription& description) {
                  "impair the outgoing link to PEER (a node name, or * for all) with PROFILE (a file or a name "
                  "in config/network), e.g. --impair follower=wan-35ms; repeatable");
   app.add_option("--seed", cli.seed, "seed of the impairment decisions (default: transport.impairment.seed)");
+  app.add_option("--set", cli.sets,
+                 "override a config value: KEY is a dotted path, VALUE is YAML, e.g. --set node.rate_hz=500 or "
+                 "--set leader.amplitudes_rad=[0,0.2,0,0.2,0,0,0]; repeatable, applied in order");
+  app.add_option("--trace", cli.trace_path, "write the node's time trace (CSV, t_s = CLOCK_MONOTONIC) to this file at exit");
+  app.add_option("--trace-seconds", cli.trace_seconds,
+                 "keep the most recent S seconds of trace (default: the run's duration, else 60)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--log-level", cli.log_level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
   try {

@@ -35,6 +35,13 @@ class ConfigNode {
   /// Parses YAML text; `source_name` stands in for the file name in errors.
   static ConfigNode load_string(const std::string& text, const std::string& source_name);
 
+  /// Applies a command-line override "KEY=VALUE" (e.g. from `--set`) to this mapping before
+  /// anything is read: KEY is a dotted path (missing mappings on the way are created), VALUE is
+  /// parsed as YAML (a scalar, `[1, 2]`, `{a: 1}`). Errors about keys set this way (unknown key,
+  /// bad value) name the `--set` argument instead of a line. Throws ConfigError on a malformed spec
+  /// or when the path runs through a value that is not a mapping.
+  void apply_override(const std::string& spec);
+
   /// A required nested mapping.
   ConfigNode child(const std::string& key) const;
   /// An optional nested mapping; nullopt when absent.
@@ -54,6 +61,10 @@ class ConfigNode {
   bool get_bool(const std::string& key, bool fallback) const;
   int64_t get_int(const std::string& key, Range range, int64_t fallback) const;
   double get_double(const std::string& key, Range range, double fallback) const;
+
+  /// The value of a required key as one line of YAML in flow style (`abc`, `[1, 2]`, `{a: 1}`),
+  /// for passing it on unparsed (e.g. as a `--set` argument).
+  std::string get_yaml(const std::string& key) const;
 
   /// Required path of an existing file, resolved relative to this config file's folder.
   std::string get_path(const std::string& key) const;
@@ -87,6 +98,7 @@ class ConfigNode {
   YAML::Node lookup(const std::string& key) const;
   YAML::Node require(const std::string& key) const;
   std::string key_path(const std::string& key) const;
+  std::string location(const YAML::Mark& mark, const std::string& path) const;
   ConfigError error_at(const YAML::Node& where, const std::string& key, const std::string& problem) const;
   ConfigNode make_child(const YAML::Node& node, const std::string& key) const;
   template <typename T>

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "teleop/launcher/scenario.h"
 #include "teleop/launcher/summary.h"
@@ -24,6 +25,12 @@ struct LaunchOptions {
   std::string report_dir;
   /// Directory holding the node executables; empty: next to this program, then PATH.
   std::string bin_dir;
+  /// Config overrides "NODE:KEY=VALUE" for the node named NODE (after the scenario's `set:`).
+  std::vector<std::string> sets;
+  /// Where each node writes its time trace (`<trace_dir>/<node name>.csv`); empty: no traces.
+  std::string trace_dir;
+  /// Seconds of trace each node keeps (`--trace-seconds`); default: the node's own.
+  std::optional<double> trace_seconds;
 };
 
 struct LaunchResult {
@@ -32,6 +39,11 @@ struct LaunchResult {
   std::string report_dir;
   RunSummary summary;
 };
+
+/// The `--set KEY=VALUE` overrides of one node: the scenario's, then the options' "NODE:KEY=VALUE"
+/// for it. Throws ConfigError for a malformed option or one naming no node of the scenario.
+std::vector<std::string> node_overrides(const Scenario& scenario, const NodeLaunch& node,
+                                        const std::vector<std::string>& sets);
 
 /// Runs the scenario to the end (its duration, SIGINT/SIGTERM, or a node failing).
 LaunchResult launch(const Scenario& scenario, const LaunchOptions& options);

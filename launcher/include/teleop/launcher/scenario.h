@@ -15,6 +15,8 @@ struct NodeLaunch {
   std::string config;
   /// Extra command-line arguments.
   std::vector<std::string> args;
+  /// Config overrides "KEY=VALUE" from the entry's `set:` mapping, passed as `--set`.
+  std::vector<std::string> sets;
 };
 
 struct Scenario {

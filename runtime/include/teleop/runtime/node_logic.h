@@ -25,10 +25,13 @@ class NodeLogic {
   virtual void active_faults(std::vector<uint32_t>& faults) const = 0;
   /// Adds the node's topics and counters to the final report. Called once after the loop.
   virtual void fill_report(NodeReport& report) const = 0;
-  /// Names of the node's trace columns (after t_s); empty: the node has no trace. Called once before the loop.
-  virtual void trace_columns(std::vector<std::string>& /*columns*/) const {}
-  /// This cycle's values, one per column. Real-time safe. Called after each cycle().
-  virtual void trace_row(double* /*row*/) const {}
+
+  /// The names of the node's time-trace columns (`--trace FILE`), appended to `columns`. Called
+  /// once before the loop; none (the default): the node writes no trace.
+  virtual void trace_columns(std::vector<std::string>& columns) const { (void)columns; }
+  /// This cycle's trace values, one per column in trace_columns() order, written into `row`
+  /// (preset to NaN). Called after each cycle() when tracing. Real-time: no allocation, no blocking.
+  virtual void trace_row(double* row) const { (void)row; }
 };
 
 }  // namespace teleop::runtime

@@ -1,0 +1,58 @@
+#pragma once
+// Runs every run x profile of an experiment through the launcher, one after the other, and
+// analyses the traces they leave.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "teleop/experiment/analysis.h"
+#include "teleop/experiment/experiment_config.h"
+
+namespace teleop::experiment {
+
+struct ExperimentOptions {
+  /// Subsets/replacements of the file's lists; empty: all of the file's.
+  std::vector<std::string> profiles;
+  std::vector<std::string> runs;
+  std::optional<double> duration_s;
+  /// The CSV; empty: <report_dir>/<name>.csv.
+  std::string csv_path;
+  /// Traces and node reports go to <report_dir>/<run>/<profile>/; empty: a new folder in /tmp.
+  std::string report_dir;
+  std::string bin_dir;
+  /// DDS domain of the first run; each further run takes the next one. Default 60.
+  std::optional<int> domain_id;
+};
+
+/// One table row: a run under a profile.
+struct RunRow {
+  std::string run;
+  std::string profile;
+  /// "ok"; "failed" (a node failed to start, run or stop cleanly); "error" (the traces could not
+  /// be analysed; `note` says why).
+  std::string status;
+  std::string note;
+  std::string trace_dir;
+  RunMetrics metrics;
+  Verdict verdict;
+};
+
+struct ExperimentResult {
+  std::vector<RunRow> rows;
+  std::string report_dir;
+  std::string csv_path;
+  /// Rows whose status is not "ok".
+  int failures = 0;
+};
+
+/// Runs the experiment and writes the CSV. Throws ConfigError for bad options (an unknown run,
+/// a profile no node can find) before any run starts; std::runtime_error when the CSV cannot be
+/// written.
+ExperimentResult run_experiment(const ExperimentConfig& config, const ExperimentOptions& options);
+
+/// The row of one finished run: analyses its traces in `trace_dir` (named <node>.csv).
+RunRow analyse_run(const std::string& run, const std::string& profile, const std::string& trace_dir, bool launched_ok,
+                   const AnalysisConfig& analysis);
+
+}  // namespace teleop::experiment

@@ -1,0 +1,53 @@
+#pragma once
+// Small pure functions over sampled signals, the building blocks of the experiment analysis.
+// Samples are (t, v) with t ascending; NaN values are skipped where a mean or extreme is taken.
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace teleop::experiment {
+
+/// A closed time interval [begin_s, end_s].
+struct Window {
+  double begin_s;
+  double end_s;
+  bool contains(double t_s) const { return t_s >= begin_s && t_s <= end_s; }
+};
+
+/// Three components of a vector signal (x, y, z), each one sample per time.
+using Axes = std::array<std::vector<double>, 3>;
+
+/// `v(t)` linearly interpolated at each time in `at`; NaN outside [t.front(), t.back()] (no
+/// extrapolation). `t` ascending; equal times keep the later sample.
+std::vector<double> interpolate(const std::vector<double>& t, const std::vector<double>& v,
+                                const std::vector<double>& at);
+
+/// Per sample: the Euclidean norm |a|.
+std::vector<double> norm(const Axes& a);
+/// Per sample: the Euclidean distance |a - b|.
+std::vector<double> distance(const Axes& a, const Axes& b);
+
+/// Mean of the finite values whose time lies in `w`; NaN when there are none.
+double mean_in(const std::vector<double>& t, const std::vector<double>& v, Window w);
+/// Root mean square of the finite values whose time lies in `w`; NaN when there are none.
+double rms_in(const std::vector<double>& t, const std::vector<double>& v, Window w);
+/// max - min of the finite values whose time lies in `w`; NaN when there are none.
+double peak_to_peak_in(const std::vector<double>& t, const std::vector<double>& v, Window w);
+
+/// |x_i - x̄_i| per sample, x̄_i the mean of the `window` samples centred on i (i - window/2 to
+/// i + (window - 1)/2); NaN where that window does not fit in the signal.
+std::vector<double> deviation_from_running_mean(const std::vector<double>& x, size_t window);
+/// The Mean Absolute Deviation of `x` from its running mean over `window` samples,
+/// MAD = Σ|x_i - x̄_i| / N, over the N samples whose time lies in `w`.
+double mean_absolute_deviation_in(const std::vector<double>& t, const std::vector<double>& x, size_t window,
+                                  Window w);
+
+/// Fraction of all samples (NaN included in the count) with v >= threshold; NaN when empty.
+double fraction_at_least(const std::vector<double>& v, double threshold);
+/// Fraction of all samples equal to `value`; NaN when empty.
+double fraction_equal(const std::vector<double>& v, double value);
+/// Smallest finite value; NaN when there is none.
+double min_finite(const std::vector<double>& v);
+
+}  // namespace teleop::experiment

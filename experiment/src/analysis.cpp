@@ -1,0 +1,93 @@
+#include "teleop/experiment/analysis.h"
+
+#include <teleop/msg/status.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace teleop::experiment {
+namespace {
+
+// the three columns <prefix>x, <prefix>y, <prefix>z
+Axes axes(const Trace& trace, const std::string& prefix) {
+  return {trace.column(prefix + "x"), trace.column(prefix + "y"), trace.column(prefix + "z")};
+}
+
+Axes interpolate_axes(const Trace& from, const Axes& values, const std::vector<double>& at) {
+  return {interpolate(from.t_s, values[0], at), interpolate(from.t_s, values[1], at),
+          interpolate(from.t_s, values[2], at)};
+}
+
+// times relative to `t0_s`
+std::vector<double> relative(const std::vector<double>& t_s, double t0_s) {
+  std::vector<double> out(t_s);
+  for (double& t : out) t -= t0_s;
+  return out;
+}
+
+void require_rows(const Trace& trace) {
+  if (trace.t_s.empty()) throw TraceError(trace.file + ": the trace has no rows");
+}
+
+std::string format(const char* fmt, double a, double b) {
+  char text[96];
+  std::snprintf(text, sizeof text, fmt, a, b);
+  return text;
+}
+
+}  // namespace
+
+RunMetrics analyse(const Trace& leader, const Trace& follower, const AnalysisConfig& config) {
+  require_rows(leader);
+  require_rows(follower);
+  const double t0_s = leader.t_s.front();
+  const std::vector<double> t_leader = relative(leader.t_s, t0_s);
+  const std::vector<double> t_follower = relative(follower.t_s, t0_s);
+  const Window hold = config.hold;
+  const Window after_settle{config.settle_s, std::numeric_limits<double>::infinity()};
+
+  // leader and follower compared at the leader's times
+  const Axes x_cmd = axes(leader, "x_cmd_");
+  const Axes f_felt = axes(leader, "f_felt_");
+  const Axes x_follower = axes(follower, "x_");
+  const Axes x_at_leader = interpolate_axes(follower, x_follower, leader.t_s);
+  const Axes f_ext_at_leader = interpolate_axes(follower, axes(follower, "f_ext_"), leader.t_s);
+  const std::vector<double> force_error = distance(f_felt, f_ext_at_leader);
+  const std::vector<double> tracking_error = distance(x_cmd, x_at_leader);
+
+  RunMetrics m;
+  m.force_error_n = mean_in(t_leader, force_error, hold);
+  m.force_felt_n = mean_in(t_leader, norm(f_felt), hold);
+  m.force_exerted_n = mean_in(t_leader, norm(f_ext_at_leader), hold);
+  m.tracking_rmse_m = rms_in(t_leader, tracking_error, after_settle);
+  m.tracking_hold_m = rms_in(t_leader, tracking_error, hold);
+
+  // the follower's own signals at its own times
+  double mad_sum = 0;
+  const auto joints = follower.numbered("q_");
+  for (const auto* q : joints) mad_sum += mean_absolute_deviation_in(t_follower, *q, kMadWindowSamples, hold);
+  m.mad_rad = mad_sum / static_cast<double>(joints.size());
+  double ptp_squared = 0;
+  for (const auto& axis : x_follower) ptp_squared += std::pow(peak_to_peak_in(t_follower, axis, hold), 2);
+  m.hold_ptp_m = std::sqrt(ptp_squared);
+  m.tdpa_min_energy_j = std::fmin(min_finite(leader.column("tdpa_w_j")), min_finite(follower.column("tdpa_w_j")));
+  m.saturation_fraction = fraction_at_least(follower.column("torque_ratio"), kSaturatedTorqueRatio);
+  m.safe_hold_fraction = fraction_equal(follower.column("state"), static_cast<double>(msg::STATE_SAFE_HOLD));
+  return m;
+}
+
+Verdict judge_stability(const RunMetrics& m, const AnalysisConfig& config) {
+  if (std::isnan(m.mad_rad)) return {std::nullopt, "no follower joint samples in the hold window"};
+  std::string why;
+  if (!(m.mad_rad <= config.stable_max_mad_rad)) {
+    why = format("MAD %.3g rad > %.3g", m.mad_rad, config.stable_max_mad_rad);
+  }
+  if (m.saturation_fraction > config.stable_max_saturation) {
+    why += (why.empty() ? "" : "; ") +
+           format("saturated %.3g of the time > %.3g", m.saturation_fraction, config.stable_max_saturation);
+  }
+  return {why.empty(), why};
+}
+
+}  // namespace teleop::experiment

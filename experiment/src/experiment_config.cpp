@@ -1,0 +1,69 @@
+#include "teleop/experiment/experiment_config.h"
+
+#include <set>
+
+#include "teleop/common/config.h"
+#include "teleop/launcher/scenario.h"
+
+namespace teleop::experiment {
+namespace {
+
+AnalysisConfig parse_analysis(const ConfigNode& a) {
+  AnalysisConfig c;
+  c.leader = a.get_string("leader", c.leader);
+  c.follower = a.get_string("follower", c.follower);
+  if (c.leader == c.follower) throw a.error("follower", "must name another node than analysis.leader");
+  c.settle_s = a.get_double("settle_s", Range{0, 1e6}, c.settle_s);
+  const std::vector<double> hold = a.get_double_list("hold_window_s", Range{0, 1e6});
+  if (a.has("hold_window_s")) {
+    if (hold.size() != 2 || !(hold[0] < hold[1])) {
+      throw a.error("hold_window_s", "expected [begin, end] with begin < end (seconds after the first leader row)");
+    }
+    c.hold = {hold[0], hold[1]};
+  }
+  c.stable_max_mad_rad = a.get_double("stable_max_mad_rad", Range{0, 1e3}, c.stable_max_mad_rad);
+  c.stable_max_saturation = a.get_double("stable_max_saturation", Range{0, 1}, c.stable_max_saturation);
+  return c;
+}
+
+std::vector<RunSpec> parse_runs(const ConfigNode& e) {
+  std::vector<RunSpec> runs;
+  std::set<std::string> names;
+  for (const ConfigNode& r : e.get_node_list("runs")) {
+    RunSpec run{r.get_string("name"), r.get_path("scenario")};
+    if (run.name.empty() || run.name.find_first_of("/ ,") != std::string::npos) {
+      throw r.error("name", "must be non-empty without '/', ',' or spaces (it names a folder and a table row)");
+    }
+    if (!names.insert(run.name).second) throw r.error("name", "'" + run.name + "' is used by two runs");
+    // a broken scenario fails here, before the first run starts
+    try {
+      launcher::load_scenario(run.scenario);
+    } catch (const ConfigError& error) {
+      throw r.error("scenario", std::string("invalid scenario: ") + error.what());
+    }
+    runs.push_back(std::move(run));
+  }
+  if (runs.empty()) throw e.error("runs", "an experiment needs at least one run");
+  return runs;
+}
+
+}  // namespace
+
+ExperimentConfig load_experiment(const std::string& path) {
+  const ConfigNode root = ConfigNode::load_file(path);
+  const ConfigNode e = root.child("experiment");
+  ExperimentConfig c;
+  c.file = path;
+  c.name = e.get_string("name");
+  if (c.name.empty() || c.name.find('/') != std::string::npos) throw e.error("name", "must be non-empty without '/'");
+  c.duration_s = e.get_double("duration_s", Range{0.1, 1e5}, c.duration_s);
+  c.seed = static_cast<uint64_t>(e.get_int("seed", Range{0, 9.0e15}, static_cast<int64_t>(c.seed)));
+  c.profiles = e.get_string_list("profiles");
+  if (c.profiles.empty()) throw e.error("profiles", "needs at least one network profile ('none' = unimpaired)");
+  c.runs = parse_runs(e);
+  c.analysis = e.has("analysis") ? parse_analysis(e.child("analysis")) : parse_analysis(ConfigNode::load_string("{}", path));
+  root.check_all_used();
+  return c;
+}
+
+}  // namespace teleop::experiment

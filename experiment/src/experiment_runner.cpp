@@ -1,0 +1,153 @@
+#include "teleop/experiment/experiment_runner.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "teleop/common/config.h"
+#include "teleop/experiment/results_table.h"
+#include "teleop/launcher/launcher.h"
+#include "teleop/runtime/shutdown_signal.h"
+#include "teleop/transport/impairment/impairment_config.h"
+
+namespace teleop::experiment {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr int kDefaultFirstDomain = 60;
+constexpr int kMaxDomain = 232;
+
+struct SelectedRun {
+  const RunSpec* spec;
+  launcher::Scenario scenario;
+};
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& i : items) out += (out.empty() ? "" : ", ") + i;
+  return out;
+}
+
+// the file's runs, or those named by --runs, with their scenarios
+std::vector<SelectedRun> select_runs(const ExperimentConfig& config, const std::vector<std::string>& names) {
+  std::vector<std::string> known;
+  for (const auto& r : config.runs) known.push_back(r.name);
+  std::vector<SelectedRun> out;
+  for (const auto& r : config.runs) {
+    if (names.empty() || std::find(names.begin(), names.end(), r.name) != names.end()) {
+      out.push_back({&r, launcher::load_scenario(r.scenario)});
+    }
+  }
+  for (const auto& n : names) {
+    if (std::find(known.begin(), known.end(), n) == known.end()) {
+      throw ConfigError("--runs: " + config.file + " has no run '" + n + "' (runs: " + join(known) + ")");
+    }
+  }
+  return out;
+}
+
+// every node must find every profile (it resolves the name next to its own config) and the
+// scenario must hold the two nodes the analysis compares; checked before the first run
+void check_runs(const ExperimentConfig& config, const std::vector<SelectedRun>& runs,
+                const std::vector<std::string>& profiles) {
+  for (const auto& run : runs) {
+    for (const std::string& node : {config.analysis.leader, config.analysis.follower}) {
+      const auto& nodes = run.scenario.nodes;
+      if (std::none_of(nodes.begin(), nodes.end(), [&](const auto& n) { return n.name == node; })) {
+        throw ConfigError(config.file + ": experiment.analysis: scenario " + run.scenario.file + " (run " +
+                          run.spec->name + ") has no node '" + node + "'");
+      }
+    }
+    for (const auto& profile : profiles) {
+      if (profile == "none") continue;
+      for (const auto& node : run.scenario.nodes) {
+        if (transport::impairment::resolve_profile_path(profile, node.config).empty()) {
+          throw ConfigError(config.file + ": experiment.profiles: no network profile '" + profile + "' for node " +
+                            node.name + " of run " + run.spec->name + " (a file, or a name in config/network)");
+        }
+      }
+    }
+  }
+}
+
+std::string make_report_dir(const std::string& requested, const std::string& name) {
+  if (!requested.empty()) {
+    fs::create_directories(requested);
+    return requested;
+  }
+  std::string pattern = (fs::temp_directory_path() / ("teleop-experiment-" + name + "-XXXXXX")).string();
+  if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("cannot create a report directory in /tmp");
+  return pattern;
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out.flush()) throw std::runtime_error("cannot write " + path);
+}
+
+}  // namespace
+
+RunRow analyse_run(const std::string& run, const std::string& profile, const std::string& trace_dir, bool launched_ok,
+                   const AnalysisConfig& analysis) {
+  RunRow row{run, profile, launched_ok ? "ok" : "failed", "", trace_dir, {}, {}};
+  try {
+    const Trace leader = read_trace((fs::path(trace_dir) / (analysis.leader + ".csv")).string());
+    const Trace follower = read_trace((fs::path(trace_dir) / (analysis.follower + ".csv")).string());
+    row.metrics = analyse(leader, follower, analysis);
+    row.verdict = judge_stability(row.metrics, analysis);
+  } catch (const TraceError& e) {
+    if (launched_ok) row.status = "error";
+    row.note = e.what();
+  }
+  if (!launched_ok && row.note.empty()) row.note = "a node failed to start, run or stop cleanly (see its log above)";
+  return row;
+}
+
+ExperimentResult run_experiment(const ExperimentConfig& config, const ExperimentOptions& options) {
+  const std::vector<std::string> profiles = options.profiles.empty() ? config.profiles : options.profiles;
+  const std::vector<SelectedRun> runs = select_runs(config, options.runs);
+  check_runs(config, runs, profiles);
+
+  ExperimentResult result;
+  result.report_dir = make_report_dir(options.report_dir, config.name);
+  result.csv_path = options.csv_path.empty() ? (fs::path(result.report_dir) / (config.name + ".csv")).string()
+                                             : options.csv_path;
+  const double duration_s = options.duration_s.value_or(config.duration_s);
+  int domain = options.domain_id.value_or(kDefaultFirstDomain);
+  const size_t total = runs.size() * profiles.size();
+  for (const auto& run : runs) {
+    for (const auto& profile : profiles) {
+      if (runtime::shutdown_requested()) break;
+      launcher::LaunchOptions launch;
+      launch.duration_s = duration_s;
+      launch.domain_id = domain;
+      domain = domain >= kMaxDomain ? 0 : domain + 1;
+      launch.network = profile == "none" ? "" : profile;
+      launch.seed = config.seed;
+      launch.report_dir = (fs::path(result.report_dir) / run.spec->name / profile).string();
+      launch.trace_dir = launch.report_dir;
+      // the whole run and then some: the ring never drops the start the analysis aligns on
+      launch.trace_seconds = duration_s + run.scenario.stop_timeout_s + 5.0;
+      launch.bin_dir = options.bin_dir;
+      std::printf("\n[experiment] === %s: run %s, profile %s (%zu of %zu, domain %d) ===\n", config.name.c_str(),
+                  run.spec->name.c_str(), profile.c_str(), result.rows.size() + 1, total, *launch.domain_id);
+      std::fflush(stdout);
+      const launcher::LaunchResult launched = launcher::launch(run.scenario, launch);
+      std::printf("%s", launcher::format_summary(launched.summary, run.spec->name + " / " + profile).c_str());
+      result.rows.push_back(
+          analyse_run(run.spec->name, profile, launch.trace_dir, launched.exit_code == 0, config.analysis));
+    }
+  }
+  for (const auto& row : result.rows) result.failures += row.status == "ok" ? 0 : 1;
+  if (result.rows.size() < total) {
+    std::printf("[experiment] interrupted after %zu of %zu runs\n", result.rows.size(), total);
+    result.failures += static_cast<int>(total - result.rows.size());
+  }
+  write_text(result.csv_path, format_csv(result.rows));
+  return result;
+}
+
+}  // namespace teleop::experiment
