@@ -82,6 +82,7 @@ void ArmControl::estimate(const ArmState& arm) {
   hardware_estimate_ = first_joints(arm.tau_ext_nm);
   dynamics_.update(state_);
   wrench_ = control::wrench_from_torque(dynamics_, *published_);
+  hardware_wrench_ = control::wrench_from_torque(dynamics_, hardware_estimate_);
 }
 
 }  // namespace teleop::follower

@@ -82,6 +82,17 @@ FollowerConfig parse_follower_config(const ConfigNode& root) {
   c.command_source = s.get_choice("command_source", {"leader", "twin"}, "leader") == "twin"
                          ? FollowerConfig::CommandSource::kTwin
                          : FollowerConfig::CommandSource::kLeader;
+  c.teleoperation = teleoperation::parse_teleoperation_config(root);
+  if (c.teleoperation) {
+    // model-mediated: the follower tracks the twin; every other architecture: the leader
+    const bool mmt = c.teleoperation->architecture == teleoperation::Architecture::kMmt;
+    const auto implied = mmt ? FollowerConfig::CommandSource::kTwin : FollowerConfig::CommandSource::kLeader;
+    if (s.has("command_source") && c.command_source != implied) {
+      throw s.error("command_source", std::string("contradicts teleoperation.architecture ") +
+                                          to_string(c.teleoperation->architecture) + " (leave it out)");
+    }
+    c.command_source = implied;
+  }
   read_joint_limits(s, c.joints, c.limits);
   read_cartesian_limits(s, c.limits);
   c.max_torque_rate_nm_per_s = s.get_double("max_torque_rate_nm_per_s", Range{0, 1e6}, c.max_torque_rate_nm_per_s);

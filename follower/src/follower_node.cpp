@@ -63,6 +63,14 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<RobotHa
   // until a command arrives, hold the pose the robot is in, from the torque it holds it with
   hold_current_pose();
   limiter_.reset(arm_.tau_measured_nm);
+  if (config.teleoperation && teleoperation::is_cartesian(config.teleoperation->architecture)) {
+    // pfc observes its energy balance too, only pfc_tdpa corrects it
+    const bool correct = config.teleoperation->architecture == teleoperation::Architecture::kPfcTdpa;
+    const double h = 1.0 / context.node.rate_hz;
+    tdpa_.emplace(context.participant, context.node.name, teleoperation::TdpaEnd::kFollower, 6, h, correct,
+                  config.teleoperation->tdpa.max_follower_damping);
+    passive_.emplace(*tdpa_, h);
+  }
 }
 
 void FollowerNode::hold_current_pose() {
@@ -120,15 +128,33 @@ void FollowerNode::run_watchdog(int64_t now_ns) {
     if (lost) ++liveliness_trips_;
     watchdog_latency_max_s_ = std::max(watchdog_latency_max_s_, silence_s);
     hold_current_pose();
+    // the channel's session ended with the command source: both ends start their bookkeeping afresh
+    if (passive_) passive_->reset();
   }
 }
 
-void FollowerNode::command_torque() {
-  const control::JointVector& tau = control_.compute(arm_, active_);
+void FollowerNode::apply_passivity() {
+  controlled_ = &active_;
+  if (!passive_) return;
+  tdpa_->receive();
+  if (state_ == msg::STATE_RUNNING && active_.mode == msg::CONTROL_CARTESIAN_IMPEDANCE) {
+    passive_->apply(active_, control_.cartesian_error(), corrected_);
+    controlled_ = &corrected_;
+  } else {
+    tdpa_->publish();  // the totals still go out, so the leader's observer keeps up
+  }
+}
+
+void FollowerNode::command_torque(const ValidCommand& command) {
+  const control::JointVector& tau = control_.compute(arm_, command);
   const bool subtract_gravity = hardware_->compensates_gravity();
   for (size_t i = 0; i < config_.joints; ++i) total_nm_[i] = tau[static_cast<Eigen::Index>(i)];
   // saturation and rate limit act on what the drives produce: the total torque
   limiter_.apply(total_nm_);
+  torque_ratio_ = 0.0;
+  for (size_t i = 0; i < config_.joints; ++i) {
+    torque_ratio_ = std::max(torque_ratio_, std::abs(total_nm_[i]) / validator_.limits().max_torque_nm[i]);
+  }
   for (size_t i = 0; i < config_.joints; ++i) {
     command_nm_[i] = total_nm_[i] - (subtract_gravity ? control_.gravity()[static_cast<Eigen::Index>(i)] : 0.0);
   }
@@ -176,7 +202,8 @@ void FollowerNode::cycle(const CycleTick& tick) {
   // shortens nor stretches the timeout
   take_commands(tick.deadline_ns);
   run_watchdog(tick.deadline_ns);
-  command_torque();
+  apply_passivity();
+  command_torque(*controlled_);
   // a robot that refuses a command or cannot be read is a fault: hold what we have, report it
   if (hardware_->write(command_nm_) != HardwareStatus::kOk || hardware_->read(arm_) != HardwareStatus::kOk) {
     ++hardware_faults_;
@@ -216,10 +243,35 @@ void FollowerNode::fill_report(runtime::NodeReport& report) const {
   counter("observer_vs_hardware_rms_nm", observer_vs_hardware_.rms());
   counter("direct_vs_hardware_rms_nm", direct_vs_hardware_.rms());
   counter("peak_external_force_n", peak_external_force_n_);
+  if (tdpa_) {
+    tdpa_->fill_report(report);
+    counter("tdpa_position_drift_m", passive_->position_drift_m());
+  }
   for (size_t i = 0; i < static_cast<size_t>(CommandIssue::kCount); ++i) {
     const auto issue = static_cast<CommandIssue>(i);
     counter(to_string(issue), static_cast<double>(validator_.count(issue)));
   }
+}
+
+void FollowerNode::trace_columns(std::vector<std::string>& columns) const {
+  for (const char* c : {"x_x", "x_y", "x_z", "f_ext_x", "f_ext_y", "f_ext_z", "f_est_x", "f_est_y", "f_est_z", "tdpa_w_j",
+                        "tdpa_drift_m", "torque_ratio", "state"}) {
+    columns.emplace_back(c);
+  }
+  for (size_t i = 0; i < config_.joints; ++i) columns.push_back("q_" + std::to_string(i));
+}
+
+void FollowerNode::trace_row(double* row) const {
+  const Eigen::Vector3d& x = control_.ee_position();
+  for (int i = 0; i < 3; ++i) *row++ = x[i];
+  // the external force on the robot (the wall pushing back, simulation ground truth): what the operator should feel
+  for (int i = 0; i < 3; ++i) *row++ = control_.hardware_wrench()[i];
+  for (int i = 0; i < 3; ++i) *row++ = control_.wrench()[i];
+  *row++ = tdpa_ ? tdpa_->observed_energy_j() : std::nan("");
+  *row++ = passive_ ? passive_->position_drift_m() : 0.0;
+  *row++ = torque_ratio_;
+  *row++ = static_cast<double>(state_);
+  std::copy_n(arm_.q_rad.begin(), config_.joints, row);
 }
 
 }  // namespace teleop::follower

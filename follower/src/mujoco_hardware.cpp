@@ -35,6 +35,15 @@ MujocoHardware::MujocoHardware(const MujocoHardwareConfig& config)
   mj_forward(m, sim_.data());
 }
 
+void MujocoHardware::place(const JointVector& q_rad) {
+  mjData* d = sim_.data();
+  for (size_t i = 0; i < arm_.count; ++i) {
+    d->qpos[arm_.qpos[i]] = q_rad[i];
+    d->qvel[arm_.dof[i]] = 0.0;
+  }
+  mj_forward(sim_.model(), d);
+}
+
 void MujocoHardware::compute_gravity() {
   const mjModel* m = sim_.model();
   // the same pose at rest: the bias forces are then gravity alone

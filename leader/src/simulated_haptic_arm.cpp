@@ -5,6 +5,7 @@
 namespace teleop::leader {
 
 SimulatedHapticArm::SimulatedHapticArm(const HapticArmConfig& config) : config_(config), arm_(config.model) {
+  if (config.model.keyframe.empty()) arm_.place(config.start_rad);
   if (arm_.read(measured_) != follower::HardwareStatus::kOk) throw std::runtime_error("the simulated haptic arm cannot be read");
   // the operator starts by holding the device where it is
   target_q_ = measured_.q_rad;

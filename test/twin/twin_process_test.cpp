@@ -100,7 +100,9 @@ TEST(TwinHil, FollowerReachesTheGoalOfTheTwinsController) {
   const std::string dir = make_temp_dir();
   const std::string twin_config = config_copy(dir, "twin_hil.yaml", {});
   const std::string follower_config =
-      config_copy(dir, "follower.yaml", {{"command_source: leader", "command_source: twin"}});
+      config_copy(dir, "follower.yaml",
+                  // hardware in the loop is no teleoperation architecture: the follower just takes the twin's commands
+                  {{"teleoperation:\n  architecture: position_position\n", ""}, {"follower:\n", "follower:\n  command_source: twin\n"}});
   const std::string domain = std::to_string(unique_domain());
   RunningProcess follower(
       {bin("teleop_follower"), "-c", follower_config, "--domain", domain, "-d", "5", "-r", dir + "/follower.yaml"});

@@ -63,6 +63,17 @@ TwinNode::TwinNode(const TwinConfig& config, runtime::NodeContext& context)
     command_pub_->sample().arm("single");
     hil_->presize(command_pub_->sample());
   }
+  if (config.mmt.enabled) {
+    // model-mediated: the follower tracks this twin's arm as joint impedance commands
+    command_pub_.emplace(context.participant, transport::topics::kTwinCommand, context.node.name);
+    auto& cmd = command_pub_->sample();
+    cmd.robot("follower");
+    cmd.arm("single");
+    cmd.mode().assign(joints_, msg::CONTROL_JOINT_IMPEDANCE);
+    transport::presize(joints_, cmd.q_des_rad(), cmd.dq_des_radps(), cmd.tau_ff_nm());
+    cmd.stiffness_nm_per_rad().assign(joints_, config.mmt.stiffness_nm_per_rad);
+    cmd.damping_nms_per_rad().assign(joints_, config.mmt.damping_nms_per_rad);
+  }
   auto& st = state_pub_.sample();
   st.robot("twin");
   st.arm("single");
@@ -117,6 +128,15 @@ void TwinNode::cycle_coupled(const CycleTick& tick) {
   // without a coupled robot the twin holds the last pose it was given
   sim_.step_coupled(q_coupled_);
   render_feedback(fresh);
+  // a twin without its leader commands nothing: the follower's watchdog holds it
+  if (command_pub_ && fresh) command_follower();
+}
+
+void TwinNode::command_follower() {
+  auto& cmd = command_pub_->sample();
+  transport::copy_joints(sim_.q_rad(), joints_, cmd.q_des_rad());
+  transport::copy_joints(sim_.dq_radps(), joints_, cmd.dq_des_radps());
+  command_pub_->publish();
 }
 
 void TwinNode::cycle_lockstep() {
@@ -256,10 +276,20 @@ void TwinNode::fill_report(runtime::NodeReport& report) const {
     report.counters.emplace_back("lockstep_stalls", static_cast<double>(stalls_));
     write_trajectory();
   }
-  if (command_pub_) {
-    report.add(*command_pub_);
-    report.counters.emplace_back("hil_goal_error_rad", goal_error_rad_);
-  }
+  if (command_pub_) report.add(*command_pub_);
+  if (hil_) report.counters.emplace_back("hil_goal_error_rad", goal_error_rad_);
+}
+
+void TwinNode::trace_columns(std::vector<std::string>& columns) const {
+  columns.emplace_back("state");
+  for (size_t i = 0; i < joints_; ++i) columns.push_back("q_" + std::to_string(i));
+  for (size_t i = 0; i < joints_; ++i) columns.push_back("tau_fb_" + std::to_string(i));
+}
+
+void TwinNode::trace_row(double* row) const {
+  *row++ = static_cast<double>(state_);
+  row = std::copy_n(sim_.q_rad().begin(), joints_, row);
+  std::copy_n(feedback_nm_.begin(), joints_, row);
 }
 
 }  // namespace teleop::twin

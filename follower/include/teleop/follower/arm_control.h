@@ -58,6 +58,10 @@ class ArmControl {
   const control::JointVector& direct_torque() const { return direct_.external_torque(); }
   /// End-effector wrench from external_torque() (force, moment; base frame, at the site).
   const control::Vector6& wrench() const { return wrench_; }
+  /// The wrench of the hardware's own external torque (a simulation's ground truth).
+  const control::Vector6& hardware_wrench() const { return hardware_wrench_; }
+  /// The Cartesian impedance's pose error of its last compute (translation, rotation vector).
+  const control::Vector6& cartesian_error() const { return cartesian_.last_error(); }
   const Eigen::Vector3d& ee_position() const { return dynamics_.ee_position(); }
   msg::ControlMode mode() const { return static_cast<msg::ControlMode>(switch_.mode()); }
   bool blending() const { return switch_.blending(); }
@@ -82,6 +86,7 @@ class ArmControl {
   control::ArmCommand command_;
   control::JointVector tau_ = control::JointVector::Zero();
   control::Vector6 wrench_ = control::Vector6::Zero();
+  control::Vector6 hardware_wrench_ = control::Vector6::Zero();
 };
 
 }  // namespace teleop::follower

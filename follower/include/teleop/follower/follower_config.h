@@ -1,4 +1,7 @@
 #pragma once
+#include <optional>
+
+#include "teleop/teleoperation/architecture.h"
 // The `follower:` section of a follower node's configuration (config/nodes/follower.yaml).
 
 #include <string>
@@ -26,6 +29,8 @@ struct FollowerConfig {
   double hold_stiffness_nm_per_rad = 200.0;
   double hold_damping_nms_per_rad = 20.0;
   ArmControlConfig control;
+  /// The architecture the follower plays its part in (absent: a plain follower of `command_source`).
+  std::optional<teleoperation::TeleoperationConfig> teleoperation;
 };
 
 /// Reads the `follower:` section; throws ConfigError naming file, key and problem.

@@ -6,10 +6,12 @@
 #include <teleop/msg/arm.h>
 
 #include <memory>
+#include <optional>
 
 #include "teleop/common/error_stats.h"
 #include "teleop/follower/arm_control.h"
 #include "teleop/follower/follower_config.h"
+#include "teleop/follower/passive_reference.h"
 #include "teleop/follower/robot_hardware.h"
 #include "teleop/follower/torque_limiter.h"
 #include "teleop/runtime/node_runner.h"
@@ -32,6 +34,8 @@ class FollowerNode final : public runtime::NodeLogic {
   msg::NodeState state() const override { return state_; }
   void active_faults(std::vector<uint32_t>& faults) const override;
   void fill_report(runtime::NodeReport& report) const override;
+  void trace_columns(std::vector<std::string>& columns) const override;
+  void trace_row(double* row) const override;
 
   /// For tests and benchmarks: what the robot measured last, and the control stack.
   const ArmState& arm() const { return arm_; }
@@ -44,7 +48,8 @@ class FollowerNode final : public runtime::NodeLogic {
   void run_watchdog(int64_t now_ns);
   bool source_lost() const;
   void hold_current_pose();
-  void command_torque();
+  void apply_passivity();
+  void command_torque(const ValidCommand& command);
   void record_metrics();
   void publish_state();
 
@@ -60,6 +65,11 @@ class FollowerNode final : public runtime::NodeLogic {
   ArmState arm_{};
   msg::NodeState state_ = msg::STATE_STARTING;
   ValidCommand active_{};
+  // pfc / pfc_tdpa: the follower's end of the TDPA channel and the command it corrects
+  std::optional<teleoperation::TdpaLink> tdpa_;
+  std::optional<PassiveReference> passive_;
+  ValidCommand corrected_{};
+  const ValidCommand* controlled_ = &active_;
   // which source gave the last valid command, and its liveliness losses then
   enum class Source { kNone, kJoint, kCartesian } source_ = Source::kNone;
   uint64_t liveliness_lost_at_command_ = 0;
@@ -78,6 +88,7 @@ class FollowerNode final : public runtime::NodeLogic {
   ErrorStats observer_vs_hardware_;
   ErrorStats direct_vs_hardware_;
   double peak_external_force_n_ = 0.0;
+  double torque_ratio_ = 0.0;  // this cycle: max over joints of |tau| / limit
 };
 
 }  // namespace teleop::follower

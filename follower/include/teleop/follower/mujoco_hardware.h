@@ -33,6 +33,8 @@ class MujocoHardware final : public RobotHardware {
   /// The joints' ranges and the motors' control ranges from the model.
   HardwareLimits limits() const override;
 
+  /// Puts the arm at rest at `q_rad` (setup time, not for the control loop).
+  void place(const JointVector& q_rad);
   /// The simulation, for tests and the twin (not for the control loop).
   sim::MujocoModel& simulation() { return sim_; }
 

@@ -17,6 +17,8 @@ struct HapticArmConfig {
   /// The operator's grip: joint stiffness [Nm/rad] and damping [Nm s/rad] of the hand.
   double hand_stiffness_nm_per_rad = 60.0;
   double hand_damping_nms_per_rad = 4.0;
+  /// Where the device starts when the model's keyframe is not given [rad].
+  JointVector start_rad{};
 };
 
 class SimulatedHapticArm final : public LeaderDevice {

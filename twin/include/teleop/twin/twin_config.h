@@ -42,6 +42,14 @@ struct HilConfig {
   double peer_timeout_s = 0.1;
 };
 
+/// Model-mediated teleoperation (teleoperation.architecture: mmt): the twin, coupled to the
+/// leader, commands the follower with its own joint state (joint impedance).
+struct MmtConfig {
+  bool enabled = false;
+  double stiffness_nm_per_rad = 400.0;
+  double damping_nms_per_rad = 20.0;
+};
+
 struct TwinConfig {
   TwinMode mode = TwinMode::kRealtime;
   /// Joints of the coupled robot; the model must drive exactly these.
@@ -56,6 +64,7 @@ struct TwinConfig {
   double peer_timeout_s = 0.1;
   LockstepConfig lockstep;
   HilConfig hil;
+  MmtConfig mmt;
 };
 
 /// Reads the `twin:` section of `root`. Throws ConfigError naming file and key.

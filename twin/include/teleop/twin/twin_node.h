@@ -35,6 +35,8 @@ class TwinNode final : public runtime::NodeLogic {
   msg::NodeState state() const override { return state_; }
   void active_faults(std::vector<uint32_t>& faults) const override;
   void fill_report(runtime::NodeReport& report) const override;
+  void trace_columns(std::vector<std::string>& columns) const override;
+  void trace_row(double* row) const override;
 
   const TwinSimulation& simulation() const { return sim_; }
 
@@ -42,6 +44,7 @@ class TwinNode final : public runtime::NodeLogic {
   void cycle_coupled(const CycleTick& tick);
   void cycle_lockstep();
   void cycle_hil(const CycleTick& tick);
+  void command_follower();
   void render_feedback(bool coupled_fresh);
   void publish_observations();
   void record_trajectory();

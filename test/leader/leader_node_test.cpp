@@ -1,4 +1,4 @@
-#include "teleop/leader/scripted_leader.h"
+#include "teleop/leader/leader_node.h"
 
 #include <gtest/gtest.h>
 
@@ -14,11 +14,12 @@ namespace {
 
 constexpr size_t kJoints = 7;
 
-ScriptedLeaderConfig config() {
-  ScriptedLeaderConfig c;
+LeaderConfig config() {
+  LeaderConfig c;
   c.joints = kJoints;
-  c.amplitude_rad.fill(0.3);
-  c.frequency_hz = 0.5;
+  c.motion.joints = kJoints;
+  c.motion.amplitude_rad.fill(0.3);
+  c.motion.frequency_hz = 0.5;
   c.peer_timeout_s = 0.05;
   return c;
 }
@@ -33,10 +34,10 @@ struct FollowerPeer {
   }
 };
 
-class ScriptedLeaderTest : public ::testing::Test {
+class LeaderNodeTest : public ::testing::Test {
  protected:
   test::NodeHarness harness{"leader"};
-  ScriptedLeader node{config(), harness.context};
+  LeaderNode node{config(), harness.context};
   FollowerPeer follower{harness.peer};
 
   void SetUp() override {
@@ -52,7 +53,7 @@ class ScriptedLeaderTest : public ::testing::Test {
   }
 };
 
-TEST_F(ScriptedLeaderTest, StreamsTheScriptedMotionAsJointImpedanceCommands) {
+TEST_F(LeaderNodeTest, StreamsTheScriptedMotionAsJointImpedanceCommands) {
   for (int i = 0; i < 300; ++i) step(true);
   EXPECT_EQ(node.state(), msg::STATE_RUNNING);
   ASSERT_TRUE(test::eventually([&] {
@@ -69,7 +70,7 @@ TEST_F(ScriptedLeaderTest, StreamsTheScriptedMotionAsJointImpedanceCommands) {
   }
 }
 
-TEST_F(ScriptedLeaderTest, StartsAtHomeWithoutAStep) {
+TEST_F(LeaderNodeTest, StartsAtHomeWithoutAStep) {
   step(true);
   ASSERT_TRUE(test::eventually([&] {
     follower.command.poll();
@@ -79,7 +80,7 @@ TEST_F(ScriptedLeaderTest, StartsAtHomeWithoutAStep) {
   for (double q : follower.command.latest().q_des_rad()) EXPECT_EQ(q, 0.0) << "home, although joints start out of phase";
 }
 
-TEST_F(ScriptedLeaderTest, FreezesTheCommandWhenTheFollowerGoesSilent) {
+TEST_F(LeaderNodeTest, FreezesTheCommandWhenTheFollowerGoesSilent) {
   for (int i = 0; i < 200; ++i) step(true);
   for (int i = 0; i < 200; ++i) step(false);
   EXPECT_EQ(node.state(), msg::STATE_SAFE_HOLD);
@@ -94,7 +95,7 @@ TEST_F(ScriptedLeaderTest, FreezesTheCommandWhenTheFollowerGoesSilent) {
   for (double dq : follower.command.latest().dq_des_radps()) EXPECT_EQ(dq, 0.0);
 }
 
-TEST_F(ScriptedLeaderTest, CycleDoesNotAllocate) {
+TEST_F(LeaderNodeTest, CycleDoesNotAllocate) {
   for (int i = 0; i < 200; ++i) step(true);
   uint64_t allocations = 0;
   for (int i = 0; i < 1000; ++i) {
@@ -114,23 +115,21 @@ TEST_F(ScriptedLeaderTest, CycleDoesNotAllocate) {
 namespace teleop::leader {
 namespace {
 
-// The simulated haptic arm rendering the follower's external torque: the safety case of a
+// Position-position feedback (the follower's joint impedance felt back): the safety case of a
 // follower dying in contact.
-class HapticLeaderTest : public ::testing::Test {
+class FeedbackFadeTest : public ::testing::Test {
  protected:
-  static ScriptedLeaderConfig haptic_config() {
-    ScriptedLeaderConfig c = config();
-    c.amplitude_rad.fill(0.0);
-    c.device = ScriptedLeaderConfig::Device::kHapticArm;
-    c.haptic_arm.model.model_path = std::string(TELEOP_SOURCE_DIR) + "/config/models/panda.xml";
-    c.haptic_arm.model.keyframe = "ready";
-    c.feedback_source = ScriptedLeaderConfig::FeedbackSource::kFollower;
+  static LeaderConfig haptic_config() {
+    LeaderConfig c = config();
+    c.motion.amplitude_rad.fill(0.0);
+    c.teleoperation.architecture = teleoperation::Architecture::kPositionPosition;
+    c.stiffness_nm_per_rad = 200;
     c.feedback.fade_s = 0.1;
     c.feedback.max_rate_nm_per_s = 500;  // 0.5 Nm per cycle
     return c;
   }
   test::NodeHarness harness{"leader"};
-  ScriptedLeader node{haptic_config(), harness.context};
+  LeaderNode node{haptic_config(), harness.context};
   FollowerPeer follower{harness.peer};
   transport::Subscription<msg::JointState> device{harness.peer, transport::topics::kLeaderState};
 
@@ -153,9 +152,10 @@ class HapticLeaderTest : public ::testing::Test {
   }
 };
 
-TEST_F(HapticLeaderTest, FadesTheFeedbackToZeroWithoutAStepWhenTheFollowerDiesInContact) {
-  // the follower pushes against something: 8 Nm of external torque on joint 2
-  follower.state.sample().tau_ext_nm()[1] = 8.0;
+TEST_F(FeedbackFadeTest, FadesTheFeedbackToZeroWithoutAStepWhenTheFollowerDiesInContact) {
+  // the follower is held 0.04 rad off the command on joint 2 (pushing against something):
+  // its joint impedance of 200 Nm/rad, felt back, is 8 Nm
+  follower.state.sample().q_rad()[1] = 0.04;
   for (int i = 0; i < 400; ++i) step(true);
   ASSERT_EQ(node.state(), msg::STATE_RUNNING);
   ASSERT_NEAR(rendered(), 8.0, 1e-9) << "the operator feels the contact";

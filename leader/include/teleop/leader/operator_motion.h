@@ -1,0 +1,35 @@
+#pragma once
+// Where the simulated operator wants the device to be (joint space), as a function of time:
+//   sine       home + a sin(2 pi f t + 0.4 i) per joint i, the amplitude faded in over ramp_s
+//   push_hold  home + a s(t/ramp_s), s the smoothstep: moves a (e.g. into a wall) and holds
+// Real-time safe.
+
+#include "teleop/common/joint_model.h"
+
+namespace teleop::leader {
+
+struct OperatorMotionConfig {
+  enum class Kind { kSine, kPushHold } kind = Kind::kSine;
+  size_t joints = 7;
+  JointVector home_rad{};
+  JointVector amplitude_rad{};
+  double frequency_hz = 0.5;
+  /// sine: the amplitude fades in over this time; push_hold: the duration of the push.
+  double ramp_s = 1.0;
+};
+
+class OperatorMotion {
+ public:
+  explicit OperatorMotion(const OperatorMotionConfig& config) : config_(config) {}
+
+  /// The intended position and velocity at `t_s` after the start.
+  void sample(double t_s, JointVector& q_rad, JointVector& dq_radps) const;
+
+ private:
+  void sine(double t_s, JointVector& q_rad, JointVector& dq_radps) const;
+  void push_hold(double t_s, JointVector& q_rad, JointVector& dq_radps) const;
+
+  OperatorMotionConfig config_;
+};
+
+}  // namespace teleop::leader

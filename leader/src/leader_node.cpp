@@ -1,0 +1,382 @@
+#include "teleop/leader/leader_node.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "teleop/common/joint_config.h"
+#include "teleop/transport/joint_fields.h"
+
+namespace teleop::leader {
+namespace {
+
+using teleoperation::Architecture;
+
+std::array<double, 3> read_vector3(const ConfigNode& node, const std::string& key, Range range,
+                                   const std::array<double, 3>& fallback) {
+  if (!node.has(key)) return fallback;
+  const std::vector<double> v = node.get_double_list(key, range);
+  if (v.size() != 3) throw node.error(key, "expected 3 values (x, y, z), got " + std::to_string(v.size()));
+  return {v[0], v[1], v[2]};
+}
+
+CartesianGains parse_cartesian(const ConfigNode& s) {
+  CartesianGains g;
+  const auto c = s.optional_child("cartesian");
+  if (!c) return g;
+  g.translational_n_per_m = read_vector3(*c, "stiffness_n_per_m", Range{0, 1e5}, g.translational_n_per_m);
+  g.rotational_nm_per_rad = read_vector3(*c, "stiffness_nm_per_rad", Range{0, 1e4}, g.rotational_nm_per_rad);
+  g.damping_ratio = c->get_double("damping_ratio", Range{0, 10}, g.damping_ratio);
+  g.nullspace_stiffness_nm_per_rad = c->get_double("nullspace_stiffness_nm_per_rad", Range{0, 1e3}, g.nullspace_stiffness_nm_per_rad);
+  return g;
+}
+
+OperatorMotionConfig parse_motion(const ConfigNode& s, size_t joints, const JointVector& home) {
+  OperatorMotionConfig m;
+  m.joints = joints;
+  m.home_rad = home;
+  m.kind = s.get_choice("motion", {"sine", "push_hold"}, "sine") == "push_hold" ? OperatorMotionConfig::Kind::kPushHold
+                                                                              : OperatorMotionConfig::Kind::kSine;
+  const double amplitude = s.get_double("amplitude_rad", Range{0, M_PI}, 0.3);
+  m.amplitude_rad = read_joint_list(s, "amplitudes_rad", joints, Range{-M_PI, M_PI}, amplitude);
+  m.frequency_hz = s.get_double("frequency_hz", Range{0, 50}, m.frequency_hz);
+  m.ramp_s = s.get_double("ramp_s", Range{0, 60}, m.ramp_s);
+  return m;
+}
+
+void parse_feedback(const ConfigNode& s, LeaderConfig& c) {
+  const ConfigNode f = s.child("feedback");
+  c.feedback_enabled = f.get_bool("enabled", true);
+  c.feedback.gain = f.get_double("gain", Range{0, 100}, c.feedback.gain);
+  c.feedback.cutoff_hz = f.get_double("cutoff_hz", Range{0, 500}, c.feedback.cutoff_hz);
+  c.feedback.max_torque_nm = read_joint_list(f, "max_torque_nm", c.joints, Range{0, 1e3}, 20.0);
+  c.feedback.max_rate_nm_per_s = f.get_double("max_rate_nm_per_s", Range{0, 1e6}, c.feedback.max_rate_nm_per_s);
+  c.feedback.fade_s = f.get_double("fade_ms", Range{0, 10'000}, c.feedback.fade_s * 1e3) * 1e-3;
+}
+
+}  // namespace
+
+LeaderConfig LeaderNode::parse_config(const ConfigNode& root) {
+  const ConfigNode s = root.child("leader");
+  LeaderConfig c;
+  c.joints = read_joint_count(s);
+  c.home_rad = read_joint_list(s, "home_rad", c.joints, Range{-2 * M_PI, 2 * M_PI}, 0.0);
+  c.motion = parse_motion(s, c.joints, c.home_rad);
+  c.stiffness_nm_per_rad = s.get_double("stiffness_nm_per_rad", Range{0, 1e5}, c.stiffness_nm_per_rad);
+  c.damping_nms_per_rad = s.get_double("damping_nms_per_rad", Range{0, 1e4}, c.damping_nms_per_rad);
+  c.cartesian = parse_cartesian(s);
+  c.peer_timeout_s = s.get_double("peer_timeout_ms", Range{1, 60'000}, 100) * 1e-3;
+  c.device = s.get_choice("device", {"scripted", "haptic_arm"}, "scripted") == "haptic_arm" ? LeaderConfig::Device::kHapticArm
+                                                                                           : LeaderConfig::Device::kScripted;
+  if (auto arm = s.optional_child("haptic_arm")) {
+    c.haptic_arm.model.model_path = arm->get_path("model");
+    c.haptic_arm.model.keyframe = arm->get_string("keyframe", "");
+    c.haptic_arm.hand_stiffness_nm_per_rad = arm->get_double("hand_stiffness_nm_per_rad", Range{0, 1e4}, c.haptic_arm.hand_stiffness_nm_per_rad);
+    c.haptic_arm.hand_damping_nms_per_rad = arm->get_double("hand_damping_nms_per_rad", Range{0, 1e3}, c.haptic_arm.hand_damping_nms_per_rad);
+  } else if (c.device == LeaderConfig::Device::kHapticArm) {
+    throw s.error("haptic_arm", "device: haptic_arm needs a haptic_arm section with the model file");
+  }
+  if (s.has("arm_model")) c.arm_model = s.get_path("arm_model");
+  c.ee_site = s.get_string("ee_site", c.ee_site);
+  c.workspace_scale = s.get_double("workspace_scale", Range{0.01, 100}, c.workspace_scale);
+  parse_feedback(s, c);
+  const auto teleoperation = teleoperation::parse_teleoperation_config(root);
+  if (!teleoperation) throw root.error("teleoperation", "the leader needs a teleoperation section (architecture)");
+  c.teleoperation = *teleoperation;
+  if (teleoperation::is_cartesian(c.teleoperation.architecture) && c.arm_model.empty()) {
+    throw s.error("arm_model", std::string("architecture ") + to_string(c.teleoperation.architecture) +
+                                   " maps the device in Cartesian space: give the arm's model file");
+  }
+  return c;
+}
+
+LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context)
+    : config_(config),
+      period_s_(1.0 / context.node.rate_hz),
+      device_state_(context.participant, transport::topics::kLeaderState, context.node.name),
+      follower_state_(context.participant, transport::topics::kFollowerState),
+      follower_wrench_(context.participant, transport::topics::kFollowerWrench),
+      twin_feedback_(context.participant, transport::topics::kTwinFeedback),
+      motion_(config.motion),
+      clutch_(config.joints, config.workspace_scale),
+      cartesian_(config.workspace_scale),
+      renderer_(config.joints, config.feedback, context.node.rate_hz) {
+  const size_t n = config.joints;
+  if (config.device == LeaderConfig::Device::kHapticArm) {
+    HapticArmConfig arm = config.haptic_arm;
+    arm.model.period_s = period_s_;
+    arm.start_rad = config.home_rad;  // without a keyframe the device starts where the follower does
+    haptic_arm_ = std::make_unique<SimulatedHapticArm>(arm);
+    if (haptic_arm_->joints() != n) throw std::runtime_error("leader.haptic_arm: the model's joint count differs from leader.joints");
+  }
+  if (!config.arm_model.empty()) {
+    device_kinematics_ = std::make_unique<ArmKinematics>(config.arm_model, config.ee_site);
+    command_kinematics_ = std::make_unique<ArmKinematics>(config.arm_model, config.ee_site);
+  }
+  const Architecture a = config.teleoperation.architecture;
+  if (teleoperation::is_cartesian(a)) {
+    cartesian_command_.emplace(context.participant, transport::topics::kLeaderCartesian, context.node.name);
+    auto& cmd = cartesian_command_->sample();
+    cmd.robot("follower");
+    cmd.arm("single");
+    cmd.frame("base");
+    // PFC reports its energy balance too; only pfc_tdpa corrects it
+    tdpa_.emplace(context.participant, context.node.name, teleoperation::TdpaEnd::kLeader, 6, period_s_,
+                  a == Architecture::kPfcTdpa, config.teleoperation.tdpa.max_leader_damping);
+  } else if (a == Architecture::kPositionPosition) {
+    joint_command_.emplace(context.participant, transport::topics::kLeaderCommand, context.node.name);
+    auto& cmd = joint_command_->sample();
+    cmd.robot("follower");
+    cmd.arm("single");
+    cmd.mode().assign(n, msg::CONTROL_JOINT_IMPEDANCE);
+    transport::presize(n, cmd.q_des_rad(), cmd.dq_des_radps(), cmd.tau_ff_nm());
+    cmd.stiffness_nm_per_rad().assign(n, config.stiffness_nm_per_rad);
+    cmd.damping_nms_per_rad().assign(n, config.damping_nms_per_rad);
+  }
+  auto& st = device_state_.sample();
+  st.robot("leader_device");
+  st.arm("single");
+  transport::presize_joint_state(st, n);
+
+  // the device starts wherever it is; the follower's command starts at home
+  q_operator_ = config.home_rad;
+  device_.q_rad = config.home_rad;
+  move_device(0.0);
+  device_home_ = device_.q_rad;
+  clutch_.start(device_.q_rad, config.home_rad);
+  if (device_kinematics_) {
+    command_kinematics_->update(config.home_rad, dq_cmd_);
+    device_kinematics_->update(device_.q_rad, device_.dq_radps);
+    cartesian_.start(device_kinematics_->position(), device_kinematics_->rotation(), command_kinematics_->position(),
+                     command_kinematics_->rotation());
+  }
+}
+
+void LeaderNode::poll_peers() {
+  follower_state_.poll();
+  follower_wrench_.poll();
+  twin_feedback_.poll();
+  if (tdpa_) tdpa_->receive();
+}
+
+void LeaderNode::update_state(int64_t now_ns) {
+  const auto timeout = static_cast<int64_t>(config_.peer_timeout_s * 1e9);
+  // model-mediated: the operator touches the twin, the follower follows it; both must be there
+  const bool fresh = follower_state_.age_ns(now_ns) < timeout &&
+                     (architecture() != Architecture::kMmt || twin_feedback_.age_ns(now_ns) < timeout);
+  if (fresh) {
+    if (state_ == msg::STATE_SAFE_HOLD && tdpa_) tdpa_->reset();  // a new session with the follower
+    state_ = msg::STATE_RUNNING;
+  } else if (state_ == msg::STATE_RUNNING) {
+    // the peer was there and went silent: freeze the command where it is
+    state_ = msg::STATE_SAFE_HOLD;
+    ++peer_lost_events_;
+  }
+}
+
+void LeaderNode::move_device(double t_s) {
+  motion_.sample(t_s, q_operator_, dq_operator_);
+  if (!haptic_arm_) {
+    device_.q_rad = q_operator_;
+    device_.dq_radps = dq_operator_;
+    return;
+  }
+  // the operator moves the device by the intended motion, from where the device started
+  for (size_t i = 0; i < config_.joints; ++i) operator_target_[i] = device_home_[i] + q_operator_[i] - config_.home_rad[i];
+  haptic_arm_->set_operator_target(operator_target_, dq_operator_);
+  if (!haptic_arm_->read(device_)) ++device_faults_;
+}
+
+void LeaderNode::send_joint_command(const JointVector& q_cmd, bool frozen) {
+  for (size_t i = 0; i < config_.joints; ++i) dq_cmd_[i] = frozen ? 0.0 : config_.workspace_scale * device_.dq_radps[i];
+  q_cmd_ = q_cmd;
+  if (!joint_command_) return;
+  auto& cmd = joint_command_->sample();
+  transport::copy_joints(q_cmd_, config_.joints, cmd.q_des_rad());
+  transport::copy_joints(dq_cmd_, config_.joints, cmd.dq_des_radps());
+  joint_command_->publish();
+}
+
+namespace {
+void set_vector3(msg::Vector3& out, double x, double y, double z) {
+  out.x(x);
+  out.y(y);
+  out.z(z);
+}
+}  // namespace
+
+void LeaderNode::send_cartesian_command() {
+  auto& cmd = cartesian_command_->sample();
+  const Eigen::Vector3d& x = cartesian_.position();
+  const Eigen::Quaterniond r = cartesian_.orientation();
+  const control::Vector6& v = cartesian_.twist();
+  set_vector3(cmd.target_pose().position_m(), x.x(), x.y(), x.z());
+  auto& o = cmd.target_pose().orientation();
+  o.w(r.w());
+  o.x(r.x());
+  o.y(r.y());
+  o.z(r.z());
+  set_vector3(cmd.target_twist().linear_mps(), v[0], v[1], v[2]);
+  set_vector3(cmd.target_twist().angular_radps(), v[3], v[4], v[5]);
+  const CartesianGains& g = config_.cartesian;
+  set_vector3(cmd.stiffness_translational_n_per_m(), g.translational_n_per_m[0], g.translational_n_per_m[1], g.translational_n_per_m[2]);
+  set_vector3(cmd.stiffness_rotational_nm_per_rad(), g.rotational_nm_per_rad[0], g.rotational_nm_per_rad[1], g.rotational_nm_per_rad[2]);
+  cmd.damping_ratio(g.damping_ratio);
+  cmd.nullspace_stiffness_nm_per_rad(g.nullspace_stiffness_nm_per_rad);
+  cartesian_command_->publish();
+}
+
+void LeaderNode::send_command(bool frozen) {
+  // the joint mapping always runs: it is the device state the twin couples to
+  send_joint_command(clutch_.map(device_.q_rad, frozen), frozen);
+  if (device_kinematics_) {
+    device_kinematics_->update(device_.q_rad, device_.dq_radps);
+    command_kinematics_->update(q_cmd_, dq_cmd_);
+  }
+  if (cartesian_command_) {
+    cartesian_.map(device_kinematics_->position(), device_kinematics_->rotation(), device_kinematics_->twist(), frozen);
+    send_cartesian_command();
+    command_position_ = cartesian_.position();
+  } else if (command_kinematics_) {
+    command_position_ = command_kinematics_->position();
+  }
+}
+
+bool LeaderNode::position_coupling_feedback(int64_t now_ns) {
+  // the spring-damper the follower's joint impedance exerts, felt back: K (q_f - q_cmd) + D (dq_f - dq_cmd)
+  const auto& st = follower_state_.latest();
+  JointVector q_f{};
+  JointVector dq_f{};
+  if (!transport::read_joints(st.q_rad(), config_.joints, q_f) || !transport::read_joints(st.dq_radps(), config_.joints, dq_f)) {
+    ++rejected_feedback_;
+    return false;
+  }
+  for (size_t i = 0; i < config_.joints; ++i) {
+    const double tau = config_.stiffness_nm_per_rad * (q_f[i] - q_cmd_[i]) + config_.damping_nms_per_rad * (dq_f[i] - dq_cmd_[i]);
+    // device torque for a follower-space torque: scaled like the motion, so power is preserved
+    feedback_[i] = config_.workspace_scale * tau;
+  }
+  return follower_state_.age_ns(now_ns) < static_cast<int64_t>(config_.peer_timeout_s * 1e9);
+}
+
+bool LeaderNode::wrench_feedback(int64_t now_ns) {
+  const auto& w = follower_wrench_.latest();
+  control::Vector6 wrench;
+  wrench << w.force_n().x(), w.force_n().y(), w.force_n().z(), w.torque_nm().x(), w.torque_nm().y(), w.torque_nm().z();
+  if (!follower_wrench_.has_sample() || !wrench.allFinite()) {
+    if (follower_wrench_.has_sample()) ++rejected_feedback_;
+    wrench.setZero();
+  }
+  // the channel's leader port: f resists the command velocity v (both follower space), the
+  // controller may add damping; the device then renders -f_out
+  std::array<double, 6> f{};
+  std::array<double, 6> v{};
+  std::array<double, 6> f_out{};
+  for (int i = 0; i < 6; ++i) {
+    f[static_cast<size_t>(i)] = -wrench[i];
+    v[static_cast<size_t>(i)] = cartesian_.twist()[i];
+  }
+  (void)tdpa_->update(f, v, f_out);
+  tdpa_->publish();
+  control::Vector6 render;
+  for (int i = 0; i < 6; ++i) render[i] = -f_out[static_cast<size_t>(i)];
+  // device force for a follower-space force: scaled like the motion (power preserved)
+  render.head<3>() *= config_.workspace_scale;
+  device_kinematics_->torque_for_wrench(render, feedback_);
+  return follower_wrench_.age_ns(now_ns) < static_cast<int64_t>(config_.peer_timeout_s * 1e9);
+}
+
+bool LeaderNode::compute_feedback(int64_t now_ns) {
+  switch (architecture()) {
+    case Architecture::kPositionPosition:
+      return follower_state_.has_sample() && position_coupling_feedback(now_ns);
+    case Architecture::kPfc:
+    case Architecture::kPfcTdpa:
+      return wrench_feedback(now_ns);
+    case Architecture::kMmt: {
+      // the twin's constraint torque, in follower joint space: scaled like the motion
+      JointVector tau{};
+      if (!transport::read_joints(twin_feedback_.latest().tau_nm(), config_.joints, tau)) {
+        if (twin_feedback_.has_sample()) ++rejected_feedback_;
+        return false;
+      }
+      for (size_t i = 0; i < config_.joints; ++i) feedback_[i] = config_.workspace_scale * tau[i];
+      return twin_feedback_.age_ns(now_ns) < static_cast<int64_t>(config_.peer_timeout_s * 1e9);
+    }
+  }
+  return false;
+}
+
+void LeaderNode::publish_device_state() {
+  // the device's state in the follower's space (mapped by the clutch): what the twin couples to
+  auto& st = device_state_.sample();
+  transport::copy_joints(q_cmd_, config_.joints, st.q_rad());
+  transport::copy_joints(dq_cmd_, config_.joints, st.dq_radps());
+  transport::copy_joints(renderer_.output(), config_.joints, st.tau_measured_nm());
+  device_state_.publish();
+}
+
+void LeaderNode::update_trace_values() {
+  if (!device_kinematics_) return;
+  // what the operator feels, as a force in the follower's frame (undoing the workspace scaling)
+  felt_force_ = device_kinematics_->wrench_for_torque(renderer_.output()).head<3>() / config_.workspace_scale;
+}
+
+void LeaderNode::cycle(const CycleTick& tick) {
+  poll_peers();
+  update_state(tick.now_ns);
+  // the operator keeps moving; what the follower is sent freezes while it is lost
+  move_device(static_cast<double>(tick.index) * period_s_);
+  send_command(state_ == msg::STATE_SAFE_HOLD);
+  const bool fresh = compute_feedback(tick.now_ns);
+  // lost or stale source, or the follower gone: fade the feedback out, never cut it
+  renderer_.render(feedback_, config_.feedback_enabled && fresh && state_ == msg::STATE_RUNNING);
+  if (haptic_arm_ && !haptic_arm_->write(renderer_.output())) ++device_faults_;
+  publish_device_state();
+  update_trace_values();
+}
+
+void LeaderNode::active_faults(std::vector<uint32_t>& faults) const {
+  if (state_ == msg::STATE_SAFE_HOLD) faults.push_back(msg::FAULT_PEER_LOST);
+  if (device_faults_ > 0) faults.push_back(msg::FAULT_HARDWARE);
+}
+
+void LeaderNode::fill_report(runtime::NodeReport& report) const {
+  if (joint_command_) report.add(*joint_command_);
+  if (cartesian_command_) report.add(*cartesian_command_);
+  report.add(device_state_);
+  report.add(follower_state_);
+  report.add(follower_wrench_);
+  report.add(twin_feedback_);
+  if (tdpa_) tdpa_->fill_report(report);
+  report.counters.emplace_back("peer_lost_events", static_cast<double>(peer_lost_events_));
+  report.counters.emplace_back("device_faults", static_cast<double>(device_faults_));
+  report.counters.emplace_back("rejected_feedback", static_cast<double>(rejected_feedback_));
+  report.counters.emplace_back("feedback_peak_nm", renderer_.peak_nm());
+  report.counters.emplace_back("feedback_saturations", static_cast<double>(renderer_.saturations()));
+  report.counters.emplace_back("feedback_rate_limited", static_cast<double>(renderer_.rate_limited()));
+}
+
+void LeaderNode::trace_columns(std::vector<std::string>& columns) const {
+  for (const char* c : {"x_cmd_x", "x_cmd_y", "x_cmd_z", "f_felt_x", "f_felt_y", "f_felt_z", "tdpa_w_j", "feedback_fade", "state"}) {
+    columns.emplace_back(c);
+  }
+  for (size_t i = 0; i < config_.joints; ++i) columns.push_back("q_dev_" + std::to_string(i));
+  for (size_t i = 0; i < config_.joints; ++i) columns.push_back("dq_dev_" + std::to_string(i));
+  for (size_t i = 0; i < config_.joints; ++i) columns.push_back("tau_fb_" + std::to_string(i));
+}
+
+void LeaderNode::trace_row(double* row) const {
+  const double nan = std::nan("");
+  const bool kinematics = device_kinematics_ != nullptr;
+  for (int i = 0; i < 3; ++i) *row++ = command_position_[i];
+  for (int i = 0; i < 3; ++i) *row++ = kinematics ? felt_force_[i] : nan;
+  *row++ = tdpa_ ? tdpa_->observed_energy_j() : nan;
+  *row++ = renderer_.fade();
+  *row++ = static_cast<double>(state_);
+  row = std::copy_n(device_.q_rad.begin(), config_.joints, row);
+  row = std::copy_n(device_.dq_radps.begin(), config_.joints, row);
+  std::copy_n(renderer_.output().begin(), config_.joints, row);
+}
+
+}  // namespace teleop::leader

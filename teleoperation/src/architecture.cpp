@@ -1,0 +1,48 @@
+#include "teleop/teleoperation/architecture.h"
+
+#include <array>
+#include <utility>
+
+namespace teleop::teleoperation {
+namespace {
+
+constexpr std::array<std::pair<Architecture, const char*>, 4> kNames{{
+    {Architecture::kPositionPosition, "position_position"},
+    {Architecture::kPfc, "pfc"},
+    {Architecture::kPfcTdpa, "pfc_tdpa"},
+    {Architecture::kMmt, "mmt"},
+}};
+
+double read_max_damping(const ConfigNode& tdpa, const std::string& key) {
+  // 0 in the file means "no limit": YAML has no portable infinity
+  const double v = tdpa.get_double(key, Range{0, 1e9}, 0.0);
+  return v > 0 ? v : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+const char* to_string(Architecture architecture) {
+  for (const auto& [a, name] : kNames) {
+    if (a == architecture) return name;
+  }
+  return "unknown";
+}
+
+std::optional<TeleoperationConfig> parse_teleoperation_config(const ConfigNode& root) {
+  const auto section = root.optional_child("teleoperation");
+  if (!section) return std::nullopt;
+  std::vector<std::string> names;
+  for (const auto& [a, name] : kNames) names.emplace_back(name);
+  TeleoperationConfig c;
+  const std::string chosen = section->get_choice("architecture", names);
+  for (const auto& [a, name] : kNames) {
+    if (chosen == name) c.architecture = a;
+  }
+  if (const auto tdpa = section->optional_child("tdpa")) {
+    c.tdpa.max_leader_damping = read_max_damping(*tdpa, "max_leader_damping");
+    c.tdpa.max_follower_damping = read_max_damping(*tdpa, "max_follower_damping");
+  }
+  return c;
+}
+
+}  // namespace teleop::teleoperation
