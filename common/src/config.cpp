@@ -87,7 +87,8 @@ void ConfigNode::apply_override(const std::string& spec) {
   for (size_t begin = 0;;) {
     const auto dot = key.find('.', begin);
     segments.push_back(key.substr(begin, dot - begin));
-    if (segments.back().empty()) throw ConfigError(state_->file + ": --set " + spec + ": empty key segment in '" + key + "'");
+    if (segments.back().empty())
+      throw ConfigError(state_->file + ": --set " + spec + ": empty key segment in '" + key + "'");
     if (dot == std::string::npos) break;
     begin = dot + 1;
   }

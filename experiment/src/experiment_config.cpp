@@ -61,7 +61,8 @@ ExperimentConfig load_experiment(const std::string& path) {
   c.profiles = e.get_string_list("profiles");
   if (c.profiles.empty()) throw e.error("profiles", "needs at least one network profile ('none' = unimpaired)");
   c.runs = parse_runs(e);
-  c.analysis = e.has("analysis") ? parse_analysis(e.child("analysis")) : parse_analysis(ConfigNode::load_string("{}", path));
+  c.analysis =
+      e.has("analysis") ? parse_analysis(e.child("analysis")) : parse_analysis(ConfigNode::load_string("{}", path));
   root.check_all_used();
   return c;
 }

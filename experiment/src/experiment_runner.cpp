@@ -119,8 +119,8 @@ ExperimentResult run_experiment(const ExperimentConfig& config, const Experiment
 
   ExperimentResult result;
   result.report_dir = make_report_dir(options.report_dir, config.name);
-  result.csv_path = options.csv_path.empty() ? (fs::path(result.report_dir) / (config.name + ".csv")).string()
-                                             : options.csv_path;
+  result.csv_path =
+      options.csv_path.empty() ? (fs::path(result.report_dir) / (config.name + ".csv")).string() : options.csv_path;
   const double duration_s = options.duration_s.value_or(config.duration_s);
   int domain = options.domain_id.value_or(kDefaultFirstDomain);
   const size_t total = runs.size() * profiles.size();

@@ -95,8 +95,7 @@ std::vector<double> deviation_from_running_mean(const std::vector<double>& x, si
   return out;
 }
 
-double mean_absolute_deviation_in(const std::vector<double>& t, const std::vector<double>& x, size_t window,
-                                  Window w) {
+double mean_absolute_deviation_in(const std::vector<double>& t, const std::vector<double>& x, size_t window, Window w) {
   return mean_in(t, deviation_from_running_mean(x, window), w);
 }
 

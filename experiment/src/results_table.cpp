@@ -24,16 +24,16 @@ std::string csv_text(const std::string& text) {
 std::string stable_word(const Verdict& v) { return !v.stable ? "n/a" : (*v.stable ? "yes" : "no"); }
 
 std::vector<double> values(const RunMetrics& m) {
-  return {m.force_error_n,  m.force_felt_n,      m.force_exerted_n,   m.tracking_rmse_m,     m.tracking_hold_m,
-          m.mad_rad,        m.hold_ptp_m,        m.tdpa_min_energy_j, m.saturation_fraction, m.safe_hold_fraction};
+  return {m.force_error_n, m.force_felt_n, m.force_exerted_n,   m.tracking_rmse_m,     m.tracking_hold_m,
+          m.mad_rad,       m.hold_ptp_m,   m.tdpa_min_energy_j, m.saturation_fraction, m.safe_hold_fraction};
 }
 
 }  // namespace
 
 std::string format_table(const std::vector<RunRow>& rows, const std::string& title) {
   std::string out = "\n== teleop experiment: " + title + " ==\n\n";
-  out += fmt::format("{:<12} {:<18} {:<7} {:<7} {:>9} {:>9} {:>9} {:>10} {:>10} {:>10} {:>9} {:>9} {:>7} {:>7}\n", "run",
-                     "profile", "status", "stable", "f_err_N", "f_felt_N", "f_ext_N", "track_m", "track_hold",
+  out += fmt::format("{:<12} {:<18} {:<7} {:<7} {:>9} {:>9} {:>9} {:>10} {:>10} {:>10} {:>9} {:>9} {:>7} {:>7}\n",
+                     "run", "profile", "status", "stable", "f_err_N", "f_felt_N", "f_ext_N", "track_m", "track_hold",
                      "mad_rad", "ptp_m", "tdpa_J", "sat", "hold");
   for (const auto& r : rows) {
     const RunMetrics& m = r.metrics;
@@ -45,7 +45,8 @@ std::string format_table(const std::vector<RunRow>& rows, const std::string& tit
   }
   std::string notes;
   for (const auto& r : rows) {
-    if (!r.verdict.why.empty()) notes += fmt::format("  {} / {}: stable {}: {}\n", r.run, r.profile, stable_word(r.verdict), r.verdict.why);
+    if (!r.verdict.why.empty())
+      notes += fmt::format("  {} / {}: stable {}: {}\n", r.run, r.profile, stable_word(r.verdict), r.verdict.why);
     if (!r.note.empty()) notes += fmt::format("  {} / {}: {}: {}\n", r.run, r.profile, r.status, r.note);
   }
   if (!notes.empty()) out += "\n" + notes;

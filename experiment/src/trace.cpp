@@ -52,13 +52,15 @@ std::vector<const std::vector<double>*> Trace::numbered(const std::string& prefi
 
 Trace read_trace(const std::string& path) {
   std::ifstream in(path);
-  if (!in) throw TraceError(path + ": cannot open the trace (a node writes one only when it has trace columns; did it run?)");
+  if (!in)
+    throw TraceError(path + ": cannot open the trace (a node writes one only when it has trace columns; did it run?)");
   Trace trace;
   trace.file = path;
   std::string line;
   if (!std::getline(in, line)) throw TraceError(path + ": empty file, expected a header 't_s,<columns>'");
   std::vector<std::string> header = split_cells(line);
-  if (header.front() != "t_s") throw TraceError(path + ":1: the first column must be 't_s', got '" + header.front() + "'");
+  if (header.front() != "t_s")
+    throw TraceError(path + ":1: the first column must be 't_s', got '" + header.front() + "'");
   trace.names.assign(header.begin() + 1, header.end());
   trace.columns.resize(trace.names.size());
   for (int line_no = 2; std::getline(in, line); ++line_no) {
@@ -66,7 +68,8 @@ Trace read_trace(const std::string& path) {
     const std::vector<std::string> cells = split_cells(line);
     const std::string where = path + ":" + std::to_string(line_no) + ": ";
     if (cells.size() != header.size()) {
-      throw TraceError(where + std::to_string(cells.size()) + " cells, the header has " + std::to_string(header.size()));
+      throw TraceError(where + std::to_string(cells.size()) + " cells, the header has " +
+                       std::to_string(header.size()));
     }
     for (size_t i = 0; i < cells.size(); ++i) {
       double value = 0;

@@ -49,18 +49,22 @@ int main(int argc, char** argv) {
   teleop::experiment::ExperimentOptions experiment_options;
   CLI::App* experiment_cmd = app.add_subcommand(
       "experiment", "run every run x network profile of an experiment file, analyse the traces, print a table + CSV");
-  experiment_cmd->add_option("experiment", experiment_path, "experiment YAML file")->required()->check(CLI::ExistingFile);
+  experiment_cmd->add_option("experiment", experiment_path, "experiment YAML file")
+      ->required()
+      ->check(CLI::ExistingFile);
   experiment_cmd->add_option("--profiles", experiment_options.profiles, "only these network profiles (comma-separated)")
       ->delimiter(',');
-  experiment_cmd->add_option("--runs", experiment_options.runs, "only these runs (comma-separated names)")->delimiter(',');
+  experiment_cmd->add_option("--runs", experiment_options.runs, "only these runs (comma-separated names)")
+      ->delimiter(',');
   experiment_cmd->add_option("-d,--duration", experiment_options.duration_s, "seconds of each run (overrides the file)")
       ->check(CLI::PositiveNumber);
   experiment_cmd->add_option("--csv", experiment_options.csv_path, "results CSV (default: <report dir>/<name>.csv)");
   experiment_cmd->add_option("--report-dir", experiment_options.report_dir,
                              "traces and node reports under DIR/<run>/<profile>/ (default: a new folder in /tmp)");
   experiment_cmd->add_option("--bin-dir", experiment_options.bin_dir, "directory of the node executables");
-  experiment_cmd->add_option("--domain", experiment_options.domain_id,
-                             "DDS domain of the first run; each further run takes the next (default 60)")
+  experiment_cmd
+      ->add_option("--domain", experiment_options.domain_id,
+                   "DDS domain of the first run; each further run takes the next (default 60)")
       ->check(CLI::Range(0, 232));
   try {
     app.parse(argc, argv);
@@ -74,7 +78,8 @@ int main(int argc, char** argv) {
       const ExperimentResult result = run_experiment(config, experiment_options);
       std::printf("%s", format_table(result.rows, config.name).c_str());
       std::printf("\nresults: %s\ntraces and reports: %s\n", result.csv_path.c_str(), result.report_dir.c_str());
-      if (result.failures > 0) std::printf("RESULT: FAILED (%d runs failed or could not be analysed, see above)\n", result.failures);
+      if (result.failures > 0)
+        std::printf("RESULT: FAILED (%d runs failed or could not be analysed, see above)\n", result.failures);
       return result.failures > 0 ? 1 : 0;
     }
     const Scenario scenario = load_scenario(scenario_path);

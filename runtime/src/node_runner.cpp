@@ -188,7 +188,8 @@ int run_node(int argc, char** argv, const NodeDescription& description) {
   app.add_option("--set", cli.sets,
                  "override a config value: KEY is a dotted path, VALUE is YAML, e.g. --set node.rate_hz=500 or "
                  "--set leader.amplitudes_rad=[0,0.2,0,0.2,0,0,0]; repeatable, applied in order");
-  app.add_option("--trace", cli.trace_path, "write the node's time trace (CSV, t_s = CLOCK_MONOTONIC) to this file at exit");
+  app.add_option("--trace", cli.trace_path,
+                 "write the node's time trace (CSV, t_s = CLOCK_MONOTONIC) to this file at exit");
   app.add_option("--trace-seconds", cli.trace_seconds,
                  "keep the most recent S seconds of trace (default: the run's duration, else 60)")
       ->check(CLI::PositiveNumber);

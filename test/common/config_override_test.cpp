@@ -79,7 +79,9 @@ TEST(ConfigOverride, NamesTheArgumentWhenItCreatedAnUnknownSection) {
 TEST(ConfigOverride, NamesTheArgumentWhenTheValueIsBad) {
   ConfigNode c = load("node:\n  rate_hz: 1000\n");
   c.apply_override("node.rate_hz=-5");
-  EXPECT_EQ(error_of([&] { c.child("node").get_double("rate_hz", Range{1, 10'000}); }),
+  EXPECT_EQ(error_of([&] {
+              c.child("node").get_double("rate_hz", Range{1, 10'000});
+            }),
             "node.yaml (--set node.rate_hz=-5): node.rate_hz: value -5 is out of range [1, 10000]");
 }
 

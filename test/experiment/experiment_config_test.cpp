@@ -28,11 +28,11 @@ class ExperimentFile : public ::testing::Test {
 };
 
 TEST_F(ExperimentFile, ReadsEveryFieldAndResolvesScenariosNextToTheFile) {
-  const ExperimentConfig c = load_experiment(write(
-      "  name: stiff_wall\n  duration_s: 10\n  seed: 7\n  profiles: [lan, none]\n" + std::string(kRuns) +
-      "    - {name: mmt, scenario: ./scenario.yaml}\n"
-      "  analysis:\n    leader: leader\n    follower: follower\n    settle_s: 1.5\n"
-      "    hold_window_s: [6.0, 9.5]\n    stable_max_mad_rad: 2.0e-4\n    stable_max_saturation: 0.02\n"));
+  const ExperimentConfig c = load_experiment(
+      write("  name: stiff_wall\n  duration_s: 10\n  seed: 7\n  profiles: [lan, none]\n" + std::string(kRuns) +
+            "    - {name: mmt, scenario: ./scenario.yaml}\n"
+            "  analysis:\n    leader: leader\n    follower: follower\n    settle_s: 1.5\n"
+            "    hold_window_s: [6.0, 9.5]\n    stable_max_mad_rad: 2.0e-4\n    stable_max_saturation: 0.02\n"));
   EXPECT_EQ(c.name, "stiff_wall");
   EXPECT_DOUBLE_EQ(c.duration_s, 10.0);
   EXPECT_EQ(c.seed, 7u);
@@ -64,19 +64,23 @@ TEST_F(ExperimentFile, NamesFileAndKeyOfEachProblem) {
             file + ":3: experiment.duration_s: value 0 is out of range [0.1, 100000]");
   EXPECT_EQ(error_for("  name: x\n  profiles: [none]\n  runs:\n    - {name: a, scenario: nope.yaml}\n"),
             file + ":5: experiment.runs[0].scenario: no file " + dir_.path("nope.yaml"));
-  EXPECT_EQ(error_for("  name: x\n  profiles: [none]\n" + std::string(kRuns) + "    - {name: pfc, scenario: scenario.yaml}\n"),
+  EXPECT_EQ(error_for("  name: x\n  profiles: [none]\n" + std::string(kRuns) +
+                      "    - {name: pfc, scenario: scenario.yaml}\n"),
             file + ":6: experiment.runs[1].name: 'pfc' is used by two runs");
   EXPECT_EQ(error_for("  name: x\n  profiles: [none]\n" + std::string(kRuns) + "  analysis: {hold_window_s: [5, 2]}\n"),
-            file + ":6: experiment.analysis.hold_window_s: expected [begin, end] with begin < end (seconds after the "
-                   "first leader row)");
+            file +
+                ":6: experiment.analysis.hold_window_s: expected [begin, end] with begin < end (seconds after the "
+                "first leader row)");
   EXPECT_EQ(error_for("  name: x\n  profiles: [none]\n" + std::string(kRuns) + "  analysis: {settle: 1}\n"),
             file + ":6: experiment.analysis.settle: unknown key");
 }
 
 TEST_F(ExperimentFile, NamesTheRunWhenItsScenarioIsInvalid) {
   dir_.write("bad_scenario.yaml", "scenario: {name: s}\nnodes: []\n");
-  const std::string e = error_for("  name: x\n  profiles: [none]\n  runs:\n    - {name: a, scenario: bad_scenario.yaml}\n");
-  EXPECT_NE(e.find(dir_.path("e.yaml") + ":5: experiment.runs[0].scenario: invalid scenario: "), std::string::npos) << e;
+  const std::string e =
+      error_for("  name: x\n  profiles: [none]\n  runs:\n    - {name: a, scenario: bad_scenario.yaml}\n");
+  EXPECT_NE(e.find(dir_.path("e.yaml") + ":5: experiment.runs[0].scenario: invalid scenario: "), std::string::npos)
+      << e;
   EXPECT_NE(e.find("bad_scenario.yaml:2: nodes: a scenario needs at least one node"), std::string::npos) << e;
 }
 

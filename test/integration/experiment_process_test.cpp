@@ -48,12 +48,15 @@ TEST(ExperimentProcess, RunsEveryProfileWithTheRealNodesAndAnalysesTheirTraces) 
   const std::string dir = make_temp_dir();
   write_file(dir + "/scenario.yaml",
              "scenario: {name: scripted, duration_s: 2}\nnodes:\n"
-             "  - {name: follower, executable: teleop_follower, config: " + source("config/nodes/follower.yaml") + "}\n"
-             "  - {name: leader, executable: teleop_leader, config: " + source("config/nodes/leader.yaml") +
-             ", set: {leader.frequency_hz: 1.0}}\n");
-  write_file(dir + "/e.yaml", "experiment:\n  name: tiny\n  duration_s: 2\n  seed: 7\n  profiles: [none, wan-35ms]\n"
-                              "  runs:\n    - {name: scripted, scenario: scenario.yaml}\n"
-                              "  analysis: {settle_s: 0.5, hold_window_s: [1.0, 2.0]}\n");
+             "  - {name: follower, executable: teleop_follower, config: " +
+                 source("config/nodes/follower.yaml") +
+                 "}\n"
+                 "  - {name: leader, executable: teleop_leader, config: " +
+                 source("config/nodes/leader.yaml") + ", set: {leader.frequency_hz: 1.0}}\n");
+  write_file(dir + "/e.yaml",
+             "experiment:\n  name: tiny\n  duration_s: 2\n  seed: 7\n  profiles: [none, wan-35ms]\n"
+             "  runs:\n    - {name: scripted, scenario: scenario.yaml}\n"
+             "  analysis: {settle_s: 0.5, hold_window_s: [1.0, 2.0]}\n");
   const ProcessResult r = run_experiment(dir + "/e.yaml", dir + "/out");
   EXPECT_EQ(r.exit_status, 0) << r.output;
   EXPECT_NE(r.output.find("link to * (wan-35ms, seed 7)"), std::string::npos) << r.output;
@@ -63,9 +66,9 @@ TEST(ExperimentProcess, RunsEveryProfileWithTheRealNodesAndAnalysesTheirTraces) 
   for (size_t row : {0u, 1u}) {
     EXPECT_EQ(csv_cell(csv, row, "profile"), row == 0 ? "none" : "wan-35ms");
     EXPECT_EQ(csv_cell(csv, row, "status"), "ok") << csv;
-    for (const std::string metric : {"force_error_n", "force_felt_n", "force_exerted_n", "tracking_rmse_m",
-                                     "tracking_hold_m", "mad_rad", "hold_ptp_m", "saturation_fraction",
-                                     "safe_hold_fraction"}) {
+    for (const std::string metric :
+         {"force_error_n", "force_felt_n", "force_exerted_n", "tracking_rmse_m", "tracking_hold_m", "mad_rad",
+          "hold_ptp_m", "saturation_fraction", "safe_hold_fraction"}) {
       const std::string cell = csv_cell(csv, row, metric);
       EXPECT_FALSE(cell.empty()) << metric << "\n" << csv;
       if (!cell.empty()) {
@@ -88,9 +91,10 @@ TEST(ExperimentProcess, AnalysesTracesOfTwoProcessesAndKeepsFailedAndBrokenRunsA
   const std::string transport = "transport: {domain_id: 42, udpv4: true, shm: false}\n";
   write_file(dir + "/leader.yaml", "node: {name: leader}\n" + transport + "synthetic: {role: leader}\n");
   write_file(dir + "/follower.yaml", "node: {name: follower}\n" + transport + "synthetic: {role: follower}\n");
-  const std::string nodes = "nodes:\n"
-                            "  - {name: follower, executable: teleop_synthetic_trace_node, config: follower.yaml}\n"
-                            "  - {name: leader, executable: teleop_synthetic_trace_node, config: leader.yaml";
+  const std::string nodes =
+      "nodes:\n"
+      "  - {name: follower, executable: teleop_synthetic_trace_node, config: follower.yaml}\n"
+      "  - {name: leader, executable: teleop_synthetic_trace_node, config: leader.yaml";
   write_file(dir + "/good.yaml", "scenario: {name: good}\n" + nodes + "}\n");
   write_file(dir + "/broken.yaml", "scenario: {name: broken}\n" + nodes + ", set: {node.bogus: 1}}\n");
   // the node called follower traces the leader's columns: the analysis must say which is missing
@@ -99,11 +103,12 @@ TEST(ExperimentProcess, AnalysesTracesOfTwoProcessesAndKeepsFailedAndBrokenRunsA
              "  - {name: follower, executable: teleop_synthetic_trace_node, config: follower.yaml,"
              " set: {synthetic.role: leader}}\n"
              "  - {name: leader, executable: teleop_synthetic_trace_node, config: leader.yaml}\n");
-  write_file(dir + "/e.yaml", "experiment:\n  name: synthetic\n  duration_s: 2\n  profiles: [none]\n"
-                              "  runs:\n    - {name: good, scenario: good.yaml}\n"
-                              "    - {name: broken, scenario: broken.yaml}\n"
-                              "    - {name: mislabelled, scenario: mislabelled.yaml}\n"
-                              "  analysis: {settle_s: 0.2, hold_window_s: [0.5, 1.5]}\n");
+  write_file(dir + "/e.yaml",
+             "experiment:\n  name: synthetic\n  duration_s: 2\n  profiles: [none]\n"
+             "  runs:\n    - {name: good, scenario: good.yaml}\n"
+             "    - {name: broken, scenario: broken.yaml}\n"
+             "    - {name: mislabelled, scenario: mislabelled.yaml}\n"
+             "  analysis: {settle_s: 0.2, hold_window_s: [0.5, 1.5]}\n");
   const ProcessResult r = run_experiment(dir + "/e.yaml", dir + "/out");
   EXPECT_EQ(r.exit_status, 1) << r.output;
   const std::string csv = read_file(dir + "/out/synthetic.csv");

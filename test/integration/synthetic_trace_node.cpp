@@ -66,8 +66,8 @@ class SyntheticTraceNode : public teleop::runtime::NodeLogic {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return teleop::runtime::run_node(argc, argv,
-                                   {teleop::msg::ROLE_TOOL, "synthetic",
-                                    "test node: writes a trace of synthetic leader or follower signals",
-                                    teleop::runtime::parser_for<SyntheticTraceNode>()});
+  return teleop::runtime::run_node(
+      argc, argv,
+      {teleop::msg::ROLE_TOOL, "synthetic", "test node: writes a trace of synthetic leader or follower signals",
+       teleop::runtime::parser_for<SyntheticTraceNode>()});
 }

@@ -16,10 +16,11 @@ using Strings = std::vector<std::string>;
 
 Scenario two_nodes(const test::TempDir& dir, const std::string& leader_extra) {
   dir.write("node.yaml", "node: {}\n");
-  return load_scenario(dir.write("s.yaml", "scenario: {name: s}\nnodes:\n"
-                                           "  - {name: follower, executable: teleop_follower, config: node.yaml}\n"
-                                           "  - name: leader\n    executable: teleop_leader\n    config: node.yaml\n" +
-                                               leader_extra));
+  return load_scenario(dir.write("s.yaml",
+                                 "scenario: {name: s}\nnodes:\n"
+                                 "  - {name: follower, executable: teleop_follower, config: node.yaml}\n"
+                                 "  - name: leader\n    executable: teleop_leader\n    config: node.yaml\n" +
+                                     leader_extra));
 }
 
 TEST(ScenarioOverrides, TurnsTheSetMappingIntoKeyValueArgumentsWithYamlValues) {

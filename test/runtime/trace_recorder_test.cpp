@@ -69,8 +69,9 @@ TEST(TraceRecorder, DoesNotAllocateWhenRecordingIncludingAcrossTheWrap) {
 TEST(TraceRecorder, RefusesZeroCapacityAndReportsAnUnwritableFile) {
   EXPECT_THROW(TraceRecorder({"a"}, 0), std::invalid_argument);
   TraceRecorder r({"a"}, 1);
-  EXPECT_NE(test::error_of<std::runtime_error>([&] { r.write_csv("/nonexistent/dir/t.csv"); })
-                .find("cannot write the trace /nonexistent/dir/t.csv"),
+  EXPECT_NE(test::error_of<std::runtime_error>([&] {
+              r.write_csv("/nonexistent/dir/t.csv");
+            }).find("cannot write the trace /nonexistent/dir/t.csv"),
             std::string::npos);
 }
 
@@ -122,8 +123,7 @@ TEST(NodeLogicTrace, RecordsOneRowPerCycleWithoutAllocatingWhenDrivenLikeTheRunn
   }
   test::TempDir dir("trace_logic");
   trace.write_csv(dir.path("t.csv"));
-  EXPECT_EQ(slurp(dir.path("t.csv")),
-            "t_s,index,twice\n0.000000005,0,0\n0.001000005,1,2\n0.002000005,2,4\n");
+  EXPECT_EQ(slurp(dir.path("t.csv")), "t_s,index,twice\n0.000000005,0,0\n0.001000005,1,2\n0.002000005,2,4\n");
 }
 
 }  // namespace

@@ -40,8 +40,7 @@ double peak_to_peak_in(const std::vector<double>& t, const std::vector<double>& 
 std::vector<double> deviation_from_running_mean(const std::vector<double>& x, size_t window);
 /// The Mean Absolute Deviation of `x` from its running mean over `window` samples,
 /// MAD = Σ|x_i - x̄_i| / N, over the N samples whose time lies in `w`.
-double mean_absolute_deviation_in(const std::vector<double>& t, const std::vector<double>& x, size_t window,
-                                  Window w);
+double mean_absolute_deviation_in(const std::vector<double>& t, const std::vector<double>& x, size_t window, Window w);
 
 /// Fraction of all samples (NaN included in the count) with v >= threshold; NaN when empty.
 double fraction_at_least(const std::vector<double>& v, double threshold);
