@@ -161,13 +161,14 @@ int run(const CommandLine& cli, const NodeDescription& description) {
     spdlog::info("{}: shut down {:.1f} ms after the signal", node.name, report.shutdown_ms);
   }
   log_summary(report);
-  // after the loop and the shutdown measurement: writing is slow and never on the control path
+  if (!cli.report_path.empty()) write_report(report, cli.report_path);
+  // after the loop and the shutdown measurement: writing is slow and never on the control path;
+  // after the report, so that a trace that cannot be written does not cost the report too
   if (trace) {
     trace->write_csv(cli.trace_path);
     spdlog::info("{}: wrote {} trace rows ({} dropped) to {}", node.name, trace->rows(), trace->rows_dropped(),
                  cli.trace_path);
   }
-  if (!cli.report_path.empty()) write_report(report, cli.report_path);
   return 0;
 }
 
