@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
-# Sets up (installs missing Debian packages), builds, and runs the main job: the demo scenario
-# (leader, follower and twin on this host), ending with the run summary.
-# Extra arguments go to `teleop launch`, e.g. --duration 10.
+# Sets up (installs missing Debian packages), builds, and runs the main job: the stiff-wall
+# experiment (docs/architectures.md) with PFC+TDPA and model-mediated teleoperation under the
+# 35 ms round-trip profile: leader, follower and twin as processes on this host, a simulated
+# operator pushing the follower into a wall through a simulated haptic arm. Prints the
+# comparison table and where the CSV and the traces are.
+# Extra arguments go to `teleop experiment`, e.g. --profiles lan,wan-35ms or --runs pfc,pfc_tdpa.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 ./scripts/setup.sh
 cmake --preset default
 cmake --build --preset default
-exec ./build/default/bin/teleop launch config/scenarios/demo.yaml "$@"
+exec ./build/default/bin/teleop experiment config/experiments/stiff_wall.yaml --runs pfc_tdpa,mmt --profiles wan-35ms "$@"

@@ -61,6 +61,18 @@ void pump_output(std::vector<RunningNode>& nodes, StatusMonitor& monitor) {
   monitor.poll();
 }
 
+// the peers whose links from `node` the network profile impairs: every one ("*"), or with sites
+// the nodes at other sites
+std::vector<std::string> impaired_peers(const Scenario& scenario, const NodeLaunch& node) {
+  const bool sited = std::any_of(scenario.nodes.begin(), scenario.nodes.end(), [](const NodeLaunch& n) { return !n.site.empty(); });
+  if (!sited) return {"*"};
+  std::vector<std::string> peers;
+  for (const NodeLaunch& other : scenario.nodes) {
+    if (other.site != node.site) peers.push_back(other.name);
+  }
+  return peers;
+}
+
 std::vector<RunningNode> start_nodes(const Scenario& scenario, const LaunchOptions& options,
                                      const std::string& report_dir) {
   std::vector<RunningNode> nodes;
@@ -72,9 +84,10 @@ std::vector<RunningNode> start_nodes(const Scenario& scenario, const LaunchOptio
       argv.push_back("--domain");
       argv.push_back(std::to_string(*options.domain_id));
     }
-    if (!options.network.empty()) {
+    for (const std::string& peer : impaired_peers(scenario, spec)) {
+      if (options.network.empty()) break;
       argv.push_back("--impair");
-      argv.push_back("*=" + options.network);
+      argv.push_back(peer + "=" + options.network);
     }
     if (options.seed) {
       argv.push_back("--seed");

@@ -27,6 +27,7 @@ Scenario load_scenario(const std::string& path) {
     node.config = (config.is_absolute() ? config : base / config).lexically_normal().string();
     if (!fs::exists(node.config)) throw n.error("config", "file " + node.config + " does not exist");
     node.args = n.get_string_list("args");
+    node.site = n.get_string("site", "");
     if (const auto set = n.optional_child("set")) {
       for (const std::string& key : set->keys()) node.sets.push_back(key + "=" + set->get_yaml(key));
     }

@@ -35,8 +35,16 @@ OperatorMotionConfig parse_motion(const ConfigNode& s, size_t joints, const Join
   OperatorMotionConfig m;
   m.joints = joints;
   m.home_rad = home;
-  m.kind = s.get_choice("motion", {"sine", "push_hold"}, "sine") == "push_hold" ? OperatorMotionConfig::Kind::kPushHold
-                                                                              : OperatorMotionConfig::Kind::kSine;
+  const std::string kind = s.get_choice("motion", {"sine", "push_hold", "recorded"}, "sine");
+  m.kind = kind == "push_hold" ? OperatorMotionConfig::Kind::kPushHold
+           : kind == "recorded" ? OperatorMotionConfig::Kind::kRecorded
+                                : OperatorMotionConfig::Kind::kSine;
+  if (m.kind == OperatorMotionConfig::Kind::kRecorded) {
+    // a CSV with t_s and <columns>0..: e.g. an earlier leader trace (columns q_dev_)
+    const auto recording = s.child("recording");
+    m.recording = std::make_shared<const JointTrajectory>(
+        JointTrajectory::load_csv(recording.get_path("file"), joints, recording.get_string("columns", "q_dev_")));
+  }
   const double amplitude = s.get_double("amplitude_rad", Range{0, M_PI}, 0.3);
   m.amplitude_rad = read_joint_list(s, "amplitudes_rad", joints, Range{-M_PI, M_PI}, amplitude);
   m.frequency_hz = s.get_double("frequency_hz", Range{0, 50}, m.frequency_hz);
@@ -66,8 +74,15 @@ LeaderConfig LeaderNode::parse_config(const ConfigNode& root) {
   c.damping_nms_per_rad = s.get_double("damping_nms_per_rad", Range{0, 1e4}, c.damping_nms_per_rad);
   c.cartesian = parse_cartesian(s);
   c.peer_timeout_s = s.get_double("peer_timeout_ms", Range{1, 60'000}, 100) * 1e-3;
-  c.device = s.get_choice("device", {"scripted", "haptic_arm"}, "scripted") == "haptic_arm" ? LeaderConfig::Device::kHapticArm
-                                                                                           : LeaderConfig::Device::kScripted;
+  const std::string device = s.get_choice("device", {"scripted", "haptic_arm", "replay"}, "scripted");
+  c.device = device == "haptic_arm" ? LeaderConfig::Device::kHapticArm
+             : device == "replay"   ? LeaderConfig::Device::kReplay
+                                    : LeaderConfig::Device::kScripted;
+  if (c.device == LeaderConfig::Device::kReplay) {
+    const ConfigNode replay = s.child("replay");
+    c.replay = std::make_shared<const JointTrajectory>(
+        JointTrajectory::load_csv(replay.get_path("file"), c.joints, replay.get_string("columns", "q_dev_")));
+  }
   if (auto arm = s.optional_child("haptic_arm")) {
     c.haptic_arm.model.model_path = arm->get_path("model");
     c.haptic_arm.model.keyframe = arm->get_string("keyframe", "");
@@ -106,8 +121,14 @@ LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context
     HapticArmConfig arm = config.haptic_arm;
     arm.model.period_s = period_s_;
     arm.start_rad = config.home_rad;  // without a keyframe the device starts where the follower does
-    haptic_arm_ = std::make_unique<SimulatedHapticArm>(arm);
-    if (haptic_arm_->joints() != n) throw std::runtime_error("leader.haptic_arm: the model's joint count differs from leader.joints");
+    auto haptic_arm = std::make_unique<SimulatedHapticArm>(arm);
+    haptic_arm_ = haptic_arm.get();
+    device_impl_ = std::move(haptic_arm);
+  } else if (config.device == LeaderConfig::Device::kReplay) {
+    device_impl_ = std::make_unique<ReplayDevice>(*config.replay, period_s_);
+  }
+  if (device_impl_ && device_impl_->joints() != n) {
+    throw std::runtime_error(std::string("leader: the ") + device_impl_->name() + " device has another joint count than leader.joints");
   }
   if (!config.arm_model.empty()) {
     device_kinematics_ = std::make_unique<ArmKinematics>(config.arm_model, config.ee_site);
@@ -176,15 +197,17 @@ void LeaderNode::update_state(int64_t now_ns) {
 
 void LeaderNode::move_device(double t_s) {
   motion_.sample(t_s, q_operator_, dq_operator_);
-  if (!haptic_arm_) {
+  if (!device_impl_) {
     device_.q_rad = q_operator_;
     device_.dq_radps = dq_operator_;
     return;
   }
-  // the operator moves the device by the intended motion, from where the device started
-  for (size_t i = 0; i < config_.joints; ++i) operator_target_[i] = device_home_[i] + q_operator_[i] - config_.home_rad[i];
-  haptic_arm_->set_operator_target(operator_target_, dq_operator_);
-  if (!haptic_arm_->read(device_)) ++device_faults_;
+  if (haptic_arm_) {
+    // the operator moves the device by the intended motion, from where the device started
+    for (size_t i = 0; i < config_.joints; ++i) operator_target_[i] = device_home_[i] + q_operator_[i] - config_.home_rad[i];
+    haptic_arm_->set_operator_target(operator_target_, dq_operator_);
+  }
+  if (!device_impl_->read(device_)) ++device_faults_;
 }
 
 void LeaderNode::send_joint_command(const JointVector& q_cmd, bool frozen) {
@@ -331,7 +354,7 @@ void LeaderNode::cycle(const CycleTick& tick) {
   const bool fresh = compute_feedback(tick.now_ns);
   // lost or stale source, or the follower gone: fade the feedback out, never cut it
   renderer_.render(feedback_, config_.feedback_enabled && fresh && state_ == msg::STATE_RUNNING);
-  if (haptic_arm_ && !haptic_arm_->write(renderer_.output())) ++device_faults_;
+  if (device_impl_ && !device_impl_->write(renderer_.output())) ++device_faults_;
   publish_device_state();
   update_trace_values();
 }

@@ -22,6 +22,8 @@ Ramp smoothstep(double t_s, double ramp_s) {
 void OperatorMotion::sample(double t_s, JointVector& q_rad, JointVector& dq_radps) const {
   if (config_.kind == OperatorMotionConfig::Kind::kPushHold) {
     push_hold(t_s, q_rad, dq_radps);
+  } else if (config_.kind == OperatorMotionConfig::Kind::kRecorded) {
+    config_.recording->sample(t_s, q_rad, dq_radps);
   } else {
     sine(t_s, q_rad, dq_radps);
   }

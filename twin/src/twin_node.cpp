@@ -136,6 +136,9 @@ void TwinNode::command_follower() {
   auto& cmd = command_pub_->sample();
   transport::copy_joints(sim_.q_rad(), joints_, cmd.q_des_rad());
   transport::copy_joints(sim_.dq_radps(), joints_, cmd.dq_des_radps());
+  // and the force: the follower pushes on its environment as hard as the twin's environment
+  // pushes back on the twin (tracking the position alone, it would only touch the wall)
+  for (size_t i = 0; i < joints_; ++i) cmd.tau_ff_nm()[i] = -contact_torque_nm_[i];
   command_pub_->publish();
 }
 
@@ -194,6 +197,7 @@ void TwinNode::cycle_hil(const CycleTick& tick) {
 
 void TwinNode::render_feedback(bool coupled_fresh) {
   const JointVector& filtered = feedback_filter_.apply(sim_.constraint_torque_nm(), joints_);
+  contact_torque_nm_ = filtered;
   for (size_t i = 0; i < joints_; ++i) {
     // without a fresh coupled robot there is nothing to render on
     feedback_nm_[i] = coupled_fresh ? config_.feedback_gain * filtered[i] : 0.0;

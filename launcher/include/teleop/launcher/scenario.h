@@ -17,6 +17,11 @@ struct NodeLaunch {
   std::vector<std::string> args;
   /// Config overrides "KEY=VALUE" from the entry's `set:` mapping, passed as `--set`.
   std::vector<std::string> sets;
+  /// Where the node runs ("" = unspecified). When nodes name their sites, a network profile
+  /// impairs only the links between different sites (the operator's leader and its local twin
+  /// talk unimpaired, both reach the remote follower over the impaired link). The node's own
+  /// name (node.name in its config) must equal `name` for that.
+  std::string site;
 };
 
 struct Scenario {

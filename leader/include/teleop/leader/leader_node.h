@@ -18,6 +18,7 @@
 #include "teleop/leader/clutch.h"
 #include "teleop/leader/feedback_renderer.h"
 #include "teleop/leader/operator_motion.h"
+#include "teleop/leader/replay_device.h"
 #include "teleop/leader/simulated_haptic_arm.h"
 #include "teleop/runtime/node_runner.h"
 #include "teleop/teleoperation/architecture.h"
@@ -48,10 +49,12 @@ struct LeaderConfig {
   CartesianGains cartesian;
   /// Follower (or twin) silent longer than this: freeze the command and report the peer lost.
   double peer_timeout_s = 0.1;
-  /// The device: `scripted` (exactly where the operator wants it) or a simulated haptic arm
-  /// pulled there by the operator's hand, feeling the feedback.
-  enum class Device { kScripted, kHapticArm } device = Device::kScripted;
+  /// The device: `scripted` (exactly where the operator wants it), a simulated haptic arm
+  /// pulled there by the operator's hand, feeling the feedback, or the replay of a recorded
+  /// device motion (open loop: it renders nothing).
+  enum class Device { kScripted, kHapticArm, kReplay } device = Device::kScripted;
   HapticArmConfig haptic_arm;
+  std::shared_ptr<const JointTrajectory> replay;
   /// Model of the arm class (device and follower): Cartesian architectures and the traces.
   std::string arm_model;
   std::string ee_site = "ee_site";
@@ -105,7 +108,8 @@ class LeaderNode final : public runtime::NodeLogic {
   transport::Subscription<msg::WrenchStamped> follower_wrench_;
   transport::Subscription<msg::JointTorque> twin_feedback_;
   std::optional<teleoperation::TdpaLink> tdpa_;
-  std::unique_ptr<SimulatedHapticArm> haptic_arm_;
+  std::unique_ptr<LeaderDevice> device_impl_;  // none: the scripted device
+  SimulatedHapticArm* haptic_arm_ = nullptr;     // device_impl_ when it is the haptic arm
   std::unique_ptr<ArmKinematics> device_kinematics_;
   std::unique_ptr<ArmKinematics> command_kinematics_;
   OperatorMotion motion_;

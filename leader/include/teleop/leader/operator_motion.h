@@ -2,20 +2,26 @@
 // Where the simulated operator wants the device to be (joint space), as a function of time:
 //   sine       home + a sin(2 pi f t + 0.4 i) per joint i, the amplitude faded in over ramp_s
 //   push_hold  home + a s(t/ramp_s), s the smoothstep: moves a (e.g. into a wall) and holds
+//   recorded   a recorded joint motion (CSV, e.g. the device columns of an earlier leader trace)
 // Real-time safe.
 
+#include <memory>
+
 #include "teleop/common/joint_model.h"
+#include "teleop/leader/joint_trajectory.h"
 
 namespace teleop::leader {
 
 struct OperatorMotionConfig {
-  enum class Kind { kSine, kPushHold } kind = Kind::kSine;
+  enum class Kind { kSine, kPushHold, kRecorded } kind = Kind::kSine;
   size_t joints = 7;
   JointVector home_rad{};
   JointVector amplitude_rad{};
   double frequency_hz = 0.5;
   /// sine: the amplitude fades in over this time; push_hold: the duration of the push.
   double ramp_s = 1.0;
+  /// kRecorded: the motion, loaded at setup.
+  std::shared_ptr<const JointTrajectory> recording;
 };
 
 class OperatorMotion {

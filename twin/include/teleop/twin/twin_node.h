@@ -69,6 +69,7 @@ class TwinNode final : public runtime::NodeLogic {
   JointVector tau_cmd_{};
   JointVector damping_cmd_{};
   JointVector feedback_nm_{};
+  JointVector contact_torque_nm_{};  // the constraint torque without joint friction, low-passed
   int64_t first_cycle_ns_ = -1;
   int64_t last_cycle_ns_ = 0;
   double sim_start_s_ = 0.0;
