@@ -68,6 +68,8 @@ RunMetrics analyse(const Trace& leader, const Trace& follower, const AnalysisCon
   const auto joints = follower.numbered("q_");
   for (const auto* q : joints) mad_sum += mean_absolute_deviation_in(t_follower, *q, kMadWindowSamples, hold);
   m.mad_rad = mad_sum / static_cast<double>(joints.size());
+  m.force_mad_n =
+      mean_absolute_deviation_in(t_follower, norm(axes(follower, "f_ext_")), kMadWindowSamples, hold);
   double ptp_squared = 0;
   for (const auto& axis : x_follower) ptp_squared += std::pow(peak_to_peak_in(t_follower, axis, hold), 2);
   m.hold_ptp_m = std::sqrt(ptp_squared);
@@ -82,6 +84,10 @@ Verdict judge_stability(const RunMetrics& m, const AnalysisConfig& config) {
   std::string why;
   if (!(m.mad_rad <= config.stable_max_mad_rad)) {
     why = format("MAD %.3g rad > %.3g", m.mad_rad, config.stable_max_mad_rad);
+  }
+  if (m.force_mad_n > config.stable_max_force_mad_n) {
+    why += (why.empty() ? "" : "; ") +
+           format("contact force MAD %.3g N > %.3g", m.force_mad_n, config.stable_max_force_mad_n);
   }
   if (m.saturation_fraction > config.stable_max_saturation) {
     why += (why.empty() ? "" : "; ") +

@@ -23,6 +23,7 @@ AnalysisConfig parse_analysis(const ConfigNode& a) {
   }
   c.stable_max_mad_rad = a.get_double("stable_max_mad_rad", Range{0, 1e3}, c.stable_max_mad_rad);
   c.stable_max_saturation = a.get_double("stable_max_saturation", Range{0, 1}, c.stable_max_saturation);
+  c.stable_max_force_mad_n = a.get_double("stable_max_force_mad_n", Range{0, 1e4}, c.stable_max_force_mad_n);
   return c;
 }
 

@@ -18,6 +18,9 @@ struct AnalysisConfig {
   Window hold{6.0, 10.0};
   double stable_max_mad_rad = 1e-4;
   double stable_max_saturation = 0.01;
+  /// Largest MAD of the follower's contact force [N] (chatter on the wall: contact made and lost
+  /// within a few cycles, which the wall hides from the joint positions).
+  double stable_max_force_mad_n = 0.1;
 };
 
 /// Samples of the running average behind mad_rad (the MAD definition's window).
@@ -35,6 +38,7 @@ struct RunMetrics {
   double tracking_rmse_m = kNone;      ///< RMS |x_cmd - x| from settle_s to the end
   double tracking_hold_m = kNone;      ///< RMS |x_cmd - x| in the hold window
   double mad_rad = kNone;              ///< follower joints' MAD from their running mean, hold window, joint mean
+  double force_mad_n = kNone;          ///< MAD of |f_ext| from its running mean, hold window
   double hold_ptp_m = kNone;           ///< norm of the per-axis peak-to-peak of the follower's x, hold window
   double tdpa_min_energy_j = kNone;    ///< minimum tdpa_w_j of both traces over the run
   double saturation_fraction = kNone;  ///< follower rows with torque_ratio >= kSaturatedTorqueRatio
@@ -53,7 +57,8 @@ struct Verdict {
 /// trace has no rows.
 RunMetrics analyse(const Trace& leader, const Trace& follower, const AnalysisConfig& config);
 
-/// stable iff mad_rad <= stable_max_mad_rad and saturation_fraction <= stable_max_saturation.
+/// stable iff mad_rad <= stable_max_mad_rad, force_mad_n <= stable_max_force_mad_n (when
+/// known) and saturation_fraction <= stable_max_saturation.
 Verdict judge_stability(const RunMetrics& metrics, const AnalysisConfig& config);
 
 }  // namespace teleop::experiment
