@@ -2,6 +2,8 @@
 #include "teleop/experiment/analysis.h"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
 #include <teleop/msg/status.h>
 
 #include <cmath>
@@ -130,6 +132,28 @@ TEST(JudgeStability, SaysWhyNotWhenMadAndSaturationExceedTheLimits) {
   EXPECT_FALSE(*v.stable);
   EXPECT_NE(v.why.find("MAD"), std::string::npos) << v.why;
   EXPECT_NE(v.why.find("saturated 0.02 of the time > 0.01"), std::string::npos) << v.why;
+}
+
+TEST(JudgeStability, ContactForceChatterIsUnstableEvenWithQuietJoints) {
+  // the wall holds the joints still while the contact is made and lost every other cycle: |f_ext|
+  // alternates 4 N and 12 N, whose MAD from a 10-sample running mean is exactly 4 N
+  Trace follower = follower_trace();
+  const auto column = [&](const char* name) -> std::vector<double>& {
+    return follower.columns[static_cast<size_t>(std::find(follower.names.begin(), follower.names.end(), name) -
+                                                follower.names.begin())];
+  };
+  auto& f = column("f_ext_x");
+  for (size_t i = 0; i < f.size(); ++i) f[i] = i % 2 == 0 ? -4.0 : -12.0;
+  std::fill(column("f_ext_y").begin(), column("f_ext_y").end(), 0.0);
+  std::fill(column("f_ext_z").begin(), column("f_ext_z").end(), 0.0);
+  AnalysisConfig config;
+  config.stable_max_mad_rad = 1.0;
+  config.stable_max_saturation = 0.05;
+  const RunMetrics m = analyse(leader_trace(), follower, config);
+  EXPECT_NEAR(m.force_mad_n, 4.0, 1e-9);
+  const Verdict v = judge_stability(m, config);
+  EXPECT_EQ(v.stable, std::optional<bool>(false));
+  EXPECT_NE(v.why.find("contact force MAD 4 N > 0.1"), std::string::npos) << v.why;
 }
 
 TEST(JudgeStability, IsStableWithinTheLimitsAndUnknownWithoutHoldSamples) {
