@@ -74,7 +74,7 @@ TEST(TwinLockstep, ReportsAStalledControllerWithinTheTimeout) {
                                               }
                                             }));
   RunningProcess controller(
-      {bin("teleop_lockstep_controller"), "--domain", std::to_string(domain), "--stall-after", "3000", "--idle-timeout", "2"});
+      {bin("teleop_lockstep_controller"), "--domain", std::to_string(domain), "--stall-after", "3000", "--idle-timeout", "10"});
   const ProcessResult twin = run_process({bin("teleop_twin"), "-c", config, "--domain", std::to_string(domain), "-d",
                                           "4", "-r", dir + "/twin.yaml"},
                                          std::chrono::seconds(30));
