@@ -17,6 +17,17 @@ JointVector read_joint_list(const ConfigNode& section, const std::string& key, s
   return out;
 }
 
+std::array<double, 3> read_vector3(const ConfigNode& section, const std::string& key, Range range) {
+  const std::vector<double> v = section.get_double_list(key, range);
+  if (v.size() != 3) throw section.error(key, "expected 3 numbers (x, y, z), got " + std::to_string(v.size()));
+  return {v[0], v[1], v[2]};
+}
+
+std::array<double, 3> read_vector3(const ConfigNode& section, const std::string& key, Range range,
+                                   const std::array<double, 3>& fallback) {
+  return section.has(key) ? read_vector3(section, key, range) : fallback;
+}
+
 size_t read_joint_count(const ConfigNode& section) {
   return static_cast<size_t>(section.get_int("joints", Range{1, static_cast<double>(kMaxJoints)}));
 }

@@ -10,13 +10,6 @@ namespace {
 
 constexpr Range kAngle{-2 * M_PI, 2 * M_PI};
 
-std::array<double, 3> read_triple(const ConfigNode& s, const std::string& key, Range range, std::array<double, 3> fallback) {
-  const auto values = s.get_double_list(key, range);
-  if (values.empty()) return fallback;
-  if (values.size() != 3) throw s.error(key, "has " + std::to_string(values.size()) + " values, expected 3 (x, y, z)");
-  return {values[0], values[1], values[2]};
-}
-
 control::JointVector to_eigen(const JointVector& v) { return Eigen::Map<const control::JointVector>(v.data()); }
 
 void read_joint_limits(const ConfigNode& s, size_t n, JointLimits& l) {
@@ -33,8 +26,8 @@ void read_joint_limits(const ConfigNode& s, size_t n, JointLimits& l) {
 }
 
 void read_cartesian_limits(const ConfigNode& s, JointLimits& l) {
-  l.workspace_min_m = read_triple(s, "workspace_min_m", Range{-10, 10}, l.workspace_min_m);
-  l.workspace_max_m = read_triple(s, "workspace_max_m", Range{-10, 10}, l.workspace_max_m);
+  l.workspace_min_m = read_vector3(s, "workspace_min_m", Range{-10, 10}, l.workspace_min_m);
+  l.workspace_max_m = read_vector3(s, "workspace_max_m", Range{-10, 10}, l.workspace_max_m);
   for (size_t i = 0; i < 3; ++i) {
     if (l.workspace_min_m[i] >= l.workspace_max_m[i]) throw s.error("workspace_max_m", "must exceed workspace_min_m on every axis");
   }

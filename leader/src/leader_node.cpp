@@ -12,14 +12,6 @@ namespace {
 
 using teleoperation::Architecture;
 
-std::array<double, 3> read_vector3(const ConfigNode& node, const std::string& key, Range range,
-                                   const std::array<double, 3>& fallback) {
-  if (!node.has(key)) return fallback;
-  const std::vector<double> v = node.get_double_list(key, range);
-  if (v.size() != 3) throw node.error(key, "expected 3 values (x, y, z), got " + std::to_string(v.size()));
-  return {v[0], v[1], v[2]};
-}
-
 CartesianGains parse_cartesian(const ConfigNode& s) {
   CartesianGains g;
   const auto c = s.optional_child("cartesian");
@@ -252,15 +244,14 @@ void LeaderNode::send_cartesian_command() {
 void LeaderNode::send_command(bool frozen) {
   // the joint mapping always runs: it is the device state the twin couples to
   send_joint_command(clutch_.map(device_.q_rad, frozen), frozen);
-  if (device_kinematics_) {
-    device_kinematics_->update(device_.q_rad, device_.dq_radps);
-    command_kinematics_->update(q_cmd_, dq_cmd_);
-  }
+  if (device_kinematics_) device_kinematics_->update(device_.q_rad, device_.dq_radps);
   if (cartesian_command_) {
     cartesian_.map(device_kinematics_->position(), device_kinematics_->rotation(), device_kinematics_->twist(), frozen);
     send_cartesian_command();
     command_position_ = cartesian_.position();
   } else if (command_kinematics_) {
+    // the commanded joints' flange position: only needed where the command is not Cartesian
+    command_kinematics_->update(q_cmd_, dq_cmd_);
     command_position_ = command_kinematics_->position();
   }
 }

@@ -2,14 +2,10 @@
 
 #include <cmath>
 
+#include "teleop/common/joint_config.h"
+
 namespace teleop::twin {
 namespace {
-
-std::array<double, 3> read_vector3(const ConfigNode& node, const std::string& key, Range range) {
-  const std::vector<double> v = node.get_double_list(key, range);
-  if (v.size() != 3) throw node.error(key, "expected 3 numbers, got " + std::to_string(v.size()));
-  return {v[0], v[1], v[2]};
-}
 
 std::string read_side(const ConfigNode& node, const std::string& key) {
   std::string side = node.get_string(key);

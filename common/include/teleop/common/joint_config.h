@@ -1,6 +1,7 @@
 #pragma once
-// Reading per-joint lists from configuration.
+// Reading per-joint lists and 3-vectors from configuration.
 
+#include <array>
 #include <string>
 
 #include "teleop/common/config.h"
@@ -12,6 +13,12 @@ namespace teleop {
 /// `fallback` when the key is absent. Throws ConfigError naming the key otherwise.
 JointVector read_joint_list(const ConfigNode& section, const std::string& key, size_t joints, Range range,
                             double fallback);
+
+/// Reads `key` as exactly 3 numbers (x, y, z) within `range`. Throws ConfigError naming the key.
+std::array<double, 3> read_vector3(const ConfigNode& section, const std::string& key, Range range);
+/// The same with `fallback` when the key is absent.
+std::array<double, 3> read_vector3(const ConfigNode& section, const std::string& key, Range range,
+                                   const std::array<double, 3>& fallback);
 
 /// Reads the number-of-joints key `joints` (1..kMaxJoints).
 size_t read_joint_count(const ConfigNode& section);
