@@ -41,9 +41,10 @@ void read_cartesian_limits(const ConfigNode& s, JointLimits& l) {
   l.max_angular_velocity_radps = s.get_double("max_angular_velocity_radps", Range{0.001, 20}, l.max_angular_velocity_radps);
 }
 
-ArmControlConfig read_control(const ConfigNode& c, size_t n) {
+// `per_arm`: the arms name their models (follower.arms, follower_arms.cpp)
+ArmControlConfig read_control(const ConfigNode& c, size_t n, bool per_arm) {
   ArmControlConfig a;
-  a.model_path = c.get_path("model");
+  if (!per_arm || c.has("model")) a.model_path = c.get_path("model");
   a.ee_site = c.get_string("ee_site", a.ee_site);
   a.position_pd.kp = to_eigen(read_joint_list(c, "position_pd_kp", n, Range{0, 1e5}, 600.0));
   a.position_pd.kd = to_eigen(read_joint_list(c, "position_pd_kd", n, Range{0, 1e4}, 30.0));
@@ -92,7 +93,7 @@ FollowerConfig parse_follower_config(const ConfigNode& root) {
   c.command_timeout_s = s.get_double("command_timeout_ms", Range{1, 60'000}, c.command_timeout_s * 1e3) * 1e-3;
   c.hold_stiffness_nm_per_rad = s.get_double("hold_stiffness_nm_per_rad", Range{0, 1e5}, c.hold_stiffness_nm_per_rad);
   c.hold_damping_nms_per_rad = s.get_double("hold_damping_nms_per_rad", Range{0, 1e4}, c.hold_damping_nms_per_rad);
-  c.control = read_control(s.child("control"), c.joints);
+  c.control = read_control(s.child("control"), c.joints, s.has("arms"));
   return c;
 }
 

@@ -201,6 +201,10 @@ void FollowerNode::publish_state() {
 }
 
 void FollowerNode::cycle(const CycleTick& tick) {
+  // read, compute, write: the torque acts on the state it was computed from, also on a scene
+  // shared by several arms, which moves on only once every arm wrote (follower_arms.cpp)
+  const bool read = hardware_->read(arm_) == HardwareStatus::kOk;
+  control_.estimate(arm_);
   // the watchdog counts control cycles (their deadlines): a cycle released late neither
   // shortens nor stretches the timeout
   take_commands(tick.deadline_ns);
@@ -208,11 +212,10 @@ void FollowerNode::cycle(const CycleTick& tick) {
   apply_passivity();
   command_torque(*controlled_);
   // a robot that refuses a command or cannot be read is a fault: hold what we have, report it
-  if (hardware_->write(command_nm_) != HardwareStatus::kOk || hardware_->read(arm_) != HardwareStatus::kOk) {
+  if (hardware_->write(command_nm_) != HardwareStatus::kOk || !read) {
     ++hardware_faults_;
     state_ = msg::STATE_FAULT;
   }
-  control_.estimate(arm_);
   record_metrics();
   publish_state();
 }
