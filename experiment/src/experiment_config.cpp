@@ -31,7 +31,7 @@ std::vector<RunSpec> parse_runs(const ConfigNode& e) {
   std::vector<RunSpec> runs;
   std::set<std::string> names;
   for (const ConfigNode& r : e.get_node_list("runs")) {
-    RunSpec run{r.get_string("name"), r.get_path("scenario")};
+    RunSpec run{r.get_string("name"), r.get_path("scenario"), r.get_string_list("set")};
     if (run.name.empty() || run.name.find_first_of("/ ,") != std::string::npos) {
       throw r.error("name", "must be non-empty without '/', ',' or spaces (it names a folder and a table row)");
     }
