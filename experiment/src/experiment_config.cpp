@@ -3,6 +3,7 @@
 #include <set>
 
 #include "teleop/common/config.h"
+#include "teleop/launcher/launcher.h"
 #include "teleop/launcher/scenario.h"
 
 namespace teleop::experiment {
@@ -37,10 +38,17 @@ std::vector<RunSpec> parse_runs(const ConfigNode& e) {
     }
     if (!names.insert(run.name).second) throw r.error("name", "'" + run.name + "' is used by two runs");
     // a broken scenario fails here, before the first run starts
+    launcher::Scenario scenario;
     try {
-      launcher::load_scenario(run.scenario);
+      scenario = launcher::load_scenario(run.scenario);
     } catch (const ConfigError& error) {
       throw r.error("scenario", std::string("invalid scenario: ") + error.what());
+    }
+    // and so does an override naming no node of it
+    try {
+      for (const auto& node : scenario.nodes) launcher::node_overrides(scenario, node, run.sets);
+    } catch (const ConfigError& error) {
+      throw r.error("set", error.what());
     }
     runs.push_back(std::move(run));
   }
