@@ -74,8 +74,9 @@ sign() {
     -signer "$out/permissions_ca.pem" -inkey "$out/ca/permissions_ca_key.pem"
 }
 
-# (no globbing: topic patterns such as teleop/twin/contact_wrench/* are for DDS, not the shell)
-topics_xml() { set -f; for t in $1; do printf '              <topic>%s</topic>\n' "$t"; done; set +f; }
+# (no globbing: topic patterns such as teleop/twin/contact_wrench/* are for DDS, not the shell);
+# every topic also in its per-arm form of a multi-arm robot, T/<arm> (transport/arm_topic.h)
+topics_xml() { set -f; for t in $1; do printf '              <topic>%s</topic>\n              <topic>%s/*</topic>\n' "$t" "$t"; done; set +f; }
 
 write_governance() {
   cat >"$out/governance.xml" <<EOF

@@ -6,6 +6,7 @@
 
 #include "teleop/common/clock.h"
 #include "teleop/follower/mujoco_hardware.h"
+#include "teleop/transport/arm_topic.h"
 #include "teleop/transport/joint_fields.h"
 
 namespace teleop::follower {
@@ -46,17 +47,19 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<RobotHa
       control_(config.control, 1.0 / context.node.rate_hz),
       validator_(config.joints, effective_limits(config, *hardware_)),
       limiter_(config.joints, validator_.limits().max_torque_nm, config.max_torque_rate_nm_per_s, 1.0 / context.node.rate_hz),
-      joint_commands_(context.participant, joint_topic(config)),
-      cartesian_commands_(context.participant, transport::topics::kLeaderCartesian),
-      state_pub_(context.participant, transport::topics::kFollowerState, context.node.name),
-      wrench_pub_(context.participant, transport::topics::kFollowerWrench, context.node.name) {
+      joint_commands_(context.participant, transport::arm_topic(joint_topic(config), config.arm)),
+      cartesian_commands_(context.participant, transport::arm_topic(transport::topics::kLeaderCartesian, config.arm)),
+      state_pub_(context.participant, transport::arm_topic(transport::topics::kFollowerState, config.arm),
+                 context.node.name),
+      wrench_pub_(context.participant, transport::arm_topic(transport::topics::kFollowerWrench, config.arm),
+                  context.node.name) {
   if (hardware_->joints() != config.joints) {
     throw std::runtime_error("follower.joints is " + std::to_string(config.joints) + " but the robot (" +
                              hardware_->name() + ") has " + std::to_string(hardware_->joints()) + " joints");
   }
   auto& st = state_pub_.sample();
   st.robot(hardware_->name());
-  st.arm("single");
+  st.arm(transport::arm_label(config.arm));
   transport::presize_joint_state(st, config.joints);
   wrench_pub_.sample().frame("base");
   if (hardware_->read(arm_) != HardwareStatus::kOk) throw std::runtime_error("the robot hardware cannot be read");
@@ -67,7 +70,7 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<RobotHa
     // pfc observes its energy balance too, only pfc_tdpa corrects it
     const bool correct = config.teleoperation->architecture == teleoperation::Architecture::kPfcTdpa;
     const double h = 1.0 / context.node.rate_hz;
-    tdpa_.emplace(context.participant, context.node.name, teleoperation::TdpaEnd::kFollower, 6, h, correct,
+    tdpa_.emplace(context.participant, context.node.name, config.arm, teleoperation::TdpaEnd::kFollower, 6, h, correct,
                   config.teleoperation->tdpa.max_follower_damping);
     passive_.emplace(*tdpa_, h);
   }

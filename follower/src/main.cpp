@@ -1,10 +1,9 @@
 // teleop_follower: the remote robot.
-#include "teleop/follower/follower_node.h"
+#include "teleop/follower/follower_arms.h"
 
 int main(int argc, char** argv) {
-  using teleop::follower::FollowerNode;
   return teleop::runtime::run_node(argc, argv,
                                    {teleop::msg::ROLE_FOLLOWER, "follower",
                                     "teleop follower: the remote robot, tracks the leader's commands",
-                                    teleop::runtime::parser_for<FollowerNode>()});
+                                    teleop::follower::follower_logic_parser()});
 }

@@ -2,74 +2,58 @@
 
 #include <cmath>
 #include <algorithm>
-#include <filesystem>
 #include <limits>
 #include <stdexcept>
-#include <vector>
 
 namespace teleop::follower {
-namespace {
-
-void delete_data(mjData* d) { mj_deleteData(d); }
-
-}  // namespace
 
 MujocoHardware::MujocoHardware(const MujocoHardwareConfig& config)
-    : sim_(sim::MujocoModel::load(config.model_path)), rest_(nullptr, delete_data) {
-  const mjModel* m = sim_.model();
-  if (!config.keyframe.empty()) sim_.reset(config.keyframe);
-  rest_.reset(mj_makeData(m));
-  name_ = "mujoco:" + std::filesystem::path(config.model_path).filename().string();
+    : MujocoHardware(std::make_shared<MujocoScene>(config), config, true) {}
 
+MujocoHardware::MujocoHardware(std::shared_ptr<MujocoScene> scene, const MujocoHardwareConfig& config)
+    : MujocoHardware(std::move(scene), config, false) {}
+
+MujocoHardware::MujocoHardware(std::shared_ptr<MujocoScene> scene, const MujocoHardwareConfig& config, bool steps_scene)
+    : scene_(std::move(scene)), steps_scene_(steps_scene) {
+  const mjModel* m = scene_->simulation().model();
+  name_ = "mujoco:" + scene_->file_name() + (config.joint_prefix.empty() ? "" : ":" + config.joint_prefix + "*");
   // the arm: hinge joints driven by actuators, in actuator order
-  arm_ = sim::find_actuated_joints(m, config.model_path);
-
-  const double steps = config.period_s / m->opt.timestep;
-  substeps_ = static_cast<int>(std::lround(steps));
-  if (substeps_ < 1 || std::abs(steps - substeps_) > 1e-6) {
-    throw std::runtime_error(config.model_path + ": timestep " + std::to_string(m->opt.timestep) +
-                             " s does not divide the control period " + std::to_string(config.period_s) + " s");
+  arm_ = sim::find_actuated_joints(m, config.model_path, config.joint_prefix);
+  const int site = mj_name2id(m, mjOBJ_SITE, config.ee_site.c_str());
+  if (site < 0 && !config.joint_prefix.empty()) {
+    throw std::runtime_error(config.model_path + ": no site " + config.ee_site + " for the arm " + config.joint_prefix + "*");
   }
-  const int site = mj_name2id(m, mjOBJ_SITE, "ee_site");
   ee_body_ = site >= 0 ? m->site_bodyid[site] : m->jnt_bodyid[m->actuator_trnid[2 * arm_.actuator[arm_.count - 1]]];
-  mj_forward(m, sim_.data());
 }
 
 void MujocoHardware::place(const JointVector& q_rad) {
-  mjData* d = sim_.data();
+  mjData* d = scene_->simulation().data();
   for (size_t i = 0; i < arm_.count; ++i) {
     d->qpos[arm_.qpos[i]] = q_rad[i];
     d->qvel[arm_.dof[i]] = 0.0;
   }
-  mj_forward(sim_.model(), d);
-}
-
-void MujocoHardware::compute_gravity() {
-  const mjModel* m = sim_.model();
-  // the same pose at rest: the bias forces are then gravity alone
-  mju_copy(rest_->qpos, sim_.data()->qpos, m->nq);
-  mju_zero(rest_->qvel, m->nv);
-  mj_kinematics(m, rest_.get());
-  mj_comPos(m, rest_.get());
-  mj_rne(m, rest_.get(), 0, rest_->qfrc_bias);
-  for (size_t i = 0; i < arm_.count; ++i) gravity_nm_[i] = rest_->qfrc_bias[arm_.dof[i]];
+  scene_->state_changed();
 }
 
 HardwareStatus MujocoHardware::write(const JointVector& tau_nm) {
-  const mjModel* m = sim_.model();
-  mjData* d = sim_.data();
-  compute_gravity();
+  mjData* d = scene_->simulation().data();
+  const mjtNum* gravity = scene_->gravity();
+  HardwareStatus status = HardwareStatus::kOk;
   for (size_t i = 0; i < arm_.count; ++i) {
-    if (!std::isfinite(tau_nm[i])) return HardwareStatus::kFault;
-    d->ctrl[arm_.actuator[i]] = tau_nm[i] + gravity_nm_[i];
+    if (!std::isfinite(tau_nm[i])) {
+      status = HardwareStatus::kFault;
+      break;
+    }
+    d->ctrl[arm_.actuator[i]] = tau_nm[i] + gravity[arm_.dof[i]];
   }
-  for (int s = 0; s < substeps_; ++s) mj_step(m, d);
-  return HardwareStatus::kOk;
+  // a shared scene steps once all its arms wrote, whatever each of them wrote
+  if (steps_scene_) scene_->step();
+  return status;
 }
 
 void MujocoHardware::compute_external_wrench(ArmState& state) const {
-  const mjModel* m = sim_.model();
-  const mjData* d = sim_.data();
+  const mjModel* m = scene_->simulation().model();
+  const mjData* d = scene_->simulation().data();
   state.force_ext_n = {0, 0, 0};
   state.torque_ext_nm = {0, 0, 0};
   const mjtNum* ee = d->xpos + 3 * ee_body_;
@@ -96,7 +80,7 @@ void MujocoHardware::compute_external_wrench(ArmState& state) const {
 }
 
 HardwareLimits MujocoHardware::limits() const {
-  const mjModel* m = sim_.model();
+  const mjModel* m = scene_->simulation().model();
   constexpr double kInf = std::numeric_limits<double>::infinity();
   HardwareLimits l;
   for (size_t i = 0; i < arm_.count; ++i) {
@@ -115,7 +99,7 @@ HardwareLimits MujocoHardware::limits() const {
 }
 
 HardwareStatus MujocoHardware::read(ArmState& state) {
-  const mjData* d = sim_.data();
+  const mjData* d = scene_->simulation().data();
   for (size_t i = 0; i < arm_.count; ++i) {
     state.q_rad[i] = d->qpos[arm_.qpos[i]];
     state.dq_radps[i] = d->qvel[arm_.dof[i]];

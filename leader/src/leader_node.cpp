@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "teleop/common/joint_config.h"
+#include "teleop/transport/arm_topic.h"
 #include "teleop/transport/joint_fields.h"
 
 namespace teleop::leader {
@@ -23,6 +24,16 @@ CartesianGains parse_cartesian(const ConfigNode& s) {
   return g;
 }
 
+}  // namespace
+
+std::shared_ptr<const JointTrajectory> load_recording(const ConfigNode& section, const std::string& key,
+                                                     const OperatorMotionConfig& motion) {
+  return std::make_shared<const JointTrajectory>(
+      JointTrajectory::load_csv(section.get_path(key), motion.joints, motion.recording_columns));
+}
+
+namespace {
+
 OperatorMotionConfig parse_motion(const ConfigNode& s, size_t joints, const JointVector& home) {
   OperatorMotionConfig m;
   m.joints = joints;
@@ -32,10 +43,11 @@ OperatorMotionConfig parse_motion(const ConfigNode& s, size_t joints, const Join
            : kind == "recorded" ? OperatorMotionConfig::Kind::kRecorded
                                 : OperatorMotionConfig::Kind::kSine;
   if (m.kind == OperatorMotionConfig::Kind::kRecorded) {
-    // a CSV with t_s and <columns>0..: e.g. an earlier leader trace (columns q_dev_)
+    // a CSV with t_s and <columns>0..: e.g. an earlier leader trace (columns q_dev_); each arm of
+    // a two-handed station may give its own file (leader_arms.cpp)
     const auto recording = s.child("recording");
-    m.recording = std::make_shared<const JointTrajectory>(
-        JointTrajectory::load_csv(recording.get_path("file"), joints, recording.get_string("columns", "q_dev_")));
+    m.recording_columns = recording.get_string("columns", m.recording_columns);
+    if (!s.has("arms") || recording.has("file")) m.recording = load_recording(recording, "file", m);
   }
   const double amplitude = s.get_double("amplitude_rad", Range{0, M_PI}, 0.3);
   m.amplitude_rad = read_joint_list(s, "amplitudes_rad", joints, Range{-M_PI, M_PI}, amplitude);
@@ -75,8 +87,10 @@ LeaderConfig LeaderNode::parse_config(const ConfigNode& root) {
     c.replay = std::make_shared<const JointTrajectory>(
         JointTrajectory::load_csv(replay.get_path("file"), c.joints, replay.get_string("columns", "q_dev_")));
   }
+  // a two-handed station names each hand's model in leader.arms (leader_arms.cpp)
+  const bool per_arm_models = s.has("arms");
   if (auto arm = s.optional_child("haptic_arm")) {
-    c.haptic_arm.model.model_path = arm->get_path("model");
+    if (!per_arm_models) c.haptic_arm.model.model_path = arm->get_path("model");
     c.haptic_arm.model.keyframe = arm->get_string("keyframe", "");
     c.haptic_arm.hand_stiffness_nm_per_rad = arm->get_double("hand_stiffness_nm_per_rad", Range{0, 1e4}, c.haptic_arm.hand_stiffness_nm_per_rad);
     c.haptic_arm.hand_damping_nms_per_rad = arm->get_double("hand_damping_nms_per_rad", Range{0, 1e3}, c.haptic_arm.hand_damping_nms_per_rad);
@@ -90,7 +104,7 @@ LeaderConfig LeaderNode::parse_config(const ConfigNode& root) {
   const auto teleoperation = teleoperation::parse_teleoperation_config(root);
   if (!teleoperation) throw root.error("teleoperation", "the leader needs a teleoperation section (architecture)");
   c.teleoperation = *teleoperation;
-  if (teleoperation::is_cartesian(c.teleoperation.architecture) && c.arm_model.empty()) {
+  if (teleoperation::is_cartesian(c.teleoperation.architecture) && c.arm_model.empty() && !per_arm_models) {
     throw s.error("arm_model", std::string("architecture ") + to_string(c.teleoperation.architecture) +
                                    " maps the device in Cartesian space: give the arm's model file");
   }
@@ -100,10 +114,11 @@ LeaderConfig LeaderNode::parse_config(const ConfigNode& root) {
 LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context)
     : config_(config),
       period_s_(1.0 / context.node.rate_hz),
-      device_state_(context.participant, transport::topics::kLeaderState, context.node.name),
-      follower_state_(context.participant, transport::topics::kFollowerState),
-      follower_wrench_(context.participant, transport::topics::kFollowerWrench),
-      twin_feedback_(context.participant, transport::topics::kTwinFeedback),
+      device_state_(context.participant, transport::arm_topic(transport::topics::kLeaderState, config.arm),
+                    context.node.name),
+      follower_state_(context.participant, transport::arm_topic(transport::topics::kFollowerState, config.arm)),
+      follower_wrench_(context.participant, transport::arm_topic(transport::topics::kFollowerWrench, config.arm)),
+      twin_feedback_(context.participant, transport::arm_topic(transport::topics::kTwinFeedback, config.arm)),
       motion_(config.motion),
       clutch_(config.joints, config.workspace_scale),
       cartesian_(config.workspace_scale),
@@ -128,19 +143,21 @@ LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context
   }
   const Architecture a = config.teleoperation.architecture;
   if (teleoperation::is_cartesian(a)) {
-    cartesian_command_.emplace(context.participant, transport::topics::kLeaderCartesian, context.node.name);
+    cartesian_command_.emplace(context.participant, transport::arm_topic(transport::topics::kLeaderCartesian, config.arm),
+                               context.node.name);
     auto& cmd = cartesian_command_->sample();
     cmd.robot("follower");
-    cmd.arm("single");
+    cmd.arm(transport::arm_label(config.arm));
     cmd.frame("base");
     // PFC reports its energy balance too; only pfc_tdpa corrects it
-    tdpa_.emplace(context.participant, context.node.name, teleoperation::TdpaEnd::kLeader, 6, period_s_,
+    tdpa_.emplace(context.participant, context.node.name, config.arm, teleoperation::TdpaEnd::kLeader, 6, period_s_,
                   a == Architecture::kPfcTdpa, config.teleoperation.tdpa.max_leader_damping);
   } else if (a == Architecture::kPositionPosition) {
-    joint_command_.emplace(context.participant, transport::topics::kLeaderCommand, context.node.name);
+    joint_command_.emplace(context.participant, transport::arm_topic(transport::topics::kLeaderCommand, config.arm),
+                           context.node.name);
     auto& cmd = joint_command_->sample();
     cmd.robot("follower");
-    cmd.arm("single");
+    cmd.arm(transport::arm_label(config.arm));
     cmd.mode().assign(n, msg::CONTROL_JOINT_IMPEDANCE);
     transport::presize(n, cmd.q_des_rad(), cmd.dq_des_radps(), cmd.tau_ff_nm());
     cmd.stiffness_nm_per_rad().assign(n, config.stiffness_nm_per_rad);
@@ -148,7 +165,7 @@ LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context
   }
   auto& st = device_state_.sample();
   st.robot("leader_device");
-  st.arm("single");
+  st.arm(transport::arm_label(config.arm));
   transport::presize_joint_state(st, n);
 
   // the device starts wherever it is; the follower's command starts at home

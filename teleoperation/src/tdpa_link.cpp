@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "teleop/transport/arm_topic.h"
 #include "teleop/transport/joint_fields.h"
 
 namespace teleop::teleoperation {
@@ -21,14 +22,16 @@ control::PassivityPortConfig port_config(TdpaEnd end, std::size_t channels, doub
 
 }  // namespace
 
-TdpaLink::TdpaLink(transport::Participant& participant, const std::string& node_name, TdpaEnd end,
-                   std::size_t channels, double cycle_s, bool controller_enabled, double max_damping)
+TdpaLink::TdpaLink(transport::Participant& participant, const std::string& node_name, const std::string& arm,
+                   TdpaEnd end, std::size_t channels, double cycle_s, bool controller_enabled, double max_damping)
     : port_(port_config(end, channels, cycle_s, controller_enabled, max_damping)),
-      out_(participant,
-           end == TdpaEnd::kLeader ? transport::topics::kTdpaLeaderToFollower : transport::topics::kTdpaFollowerToLeader,
+      out_(participant, transport::arm_topic(end == TdpaEnd::kLeader ? transport::topics::kTdpaLeaderToFollower
+                                                                     : transport::topics::kTdpaFollowerToLeader,
+                                             arm),
            node_name),
-      in_(participant,
-          end == TdpaEnd::kLeader ? transport::topics::kTdpaFollowerToLeader : transport::topics::kTdpaLeaderToFollower) {
+      in_(participant, transport::arm_topic(end == TdpaEnd::kLeader ? transport::topics::kTdpaFollowerToLeader
+                                                                    : transport::topics::kTdpaLeaderToFollower,
+                                            arm)) {
   transport::presize(channels, out_.sample().energy_in_j(), out_.sample().energy_out_j());
   received_.channels = channels;
 }

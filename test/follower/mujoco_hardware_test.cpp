@@ -89,3 +89,65 @@ TEST(MujocoHardware, ReadAndWriteDoNotAllocate) {
 
 }  // namespace
 }  // namespace teleop::follower
+
+namespace teleop::follower {
+namespace {
+
+MujocoHardwareConfig two_arm_arm(const std::string& side) {
+  MujocoHardwareConfig c;
+  c.model_path = std::string(TELEOP_SOURCE_DIR) + "/config/models/dual_arm.xml";
+  c.keyframe = "home";
+  c.joint_prefix = side + "_";
+  c.ee_site = side + "_ee_site";
+  return c;
+}
+
+TEST(MujocoHardwareOnASharedScene, DrivesEachArmsOwnJointsAndMovesOnlyWhenTheSceneSteps) {
+  auto scene = std::make_shared<MujocoScene>(two_arm_arm("left"));
+  MujocoHardware left(scene, two_arm_arm("left"));
+  MujocoHardware right(scene, two_arm_arm("right"));
+  EXPECT_EQ(left.joints(), 7u);
+  EXPECT_EQ(right.joints(), 7u);
+  EXPECT_STREQ(left.name(), "mujoco:dual_arm.xml:left_*");
+  ArmState l0, r0;
+  ASSERT_EQ(left.read(l0), HardwareStatus::kOk);
+  ASSERT_EQ(right.read(r0), HardwareStatus::kOk);
+  EXPECT_NEAR(l0.q_rad[0], -0.066, 1e-9);  // dual_arm's "home": mirrored arms
+  EXPECT_NEAR(r0.q_rad[0], 0.066, 1e-9);
+
+  JointVector push{};
+  push[0] = 5.0;  // the left arm's first joint only
+  ASSERT_EQ(left.write(push), HardwareStatus::kOk);
+  ASSERT_EQ(right.write(JointVector{}), HardwareStatus::kOk);
+  ArmState l1;
+  ASSERT_EQ(left.read(l1), HardwareStatus::kOk);
+  EXPECT_EQ(l1.q_rad, l0.q_rad) << "an arm's write leaves the stepping to the scene's owner";
+  for (int i = 0; i < 200; ++i) {
+    ASSERT_EQ(left.write(push), HardwareStatus::kOk);
+    ASSERT_EQ(right.write(JointVector{}), HardwareStatus::kOk);
+    scene->step();
+  }
+  ArmState l2, r2;
+  ASSERT_EQ(left.read(l2), HardwareStatus::kOk);
+  ASSERT_EQ(right.read(r2), HardwareStatus::kOk);
+  EXPECT_GT(l2.q_rad[0] - l0.q_rad[0], 0.01) << "the pushed joint moved";
+  for (size_t j = 0; j < 7; ++j) EXPECT_NEAR(r2.q_rad[j], r0.q_rad[j], 2e-3) << "the right arm held, joint " << j;
+}
+
+TEST(MujocoHardwareOnASharedScene, NamesTheMissingArmOrSite) {
+  auto scene = std::make_shared<MujocoScene>(two_arm_arm("left"));
+  MujocoHardwareConfig no_arm = two_arm_arm("middle");
+  no_arm.ee_site = "left_ee_site";
+  try {
+    MujocoHardware hw(scene, no_arm);
+    FAIL() << "no joint is named middle_*";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("middle_*"), std::string::npos) << e.what();
+  }
+  MujocoHardwareConfig no_site = two_arm_arm("left");
+  no_site.ee_site = "left_gripper";
+  EXPECT_THROW(MujocoHardware(scene, no_site), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace teleop::follower

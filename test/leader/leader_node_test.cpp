@@ -138,7 +138,9 @@ class FeedbackFadeTest : public ::testing::Test {
   }
   // one cycle; returns the torque the device rendered on joint 1
   double step(bool follower_alive) {
-    if (follower_alive) EXPECT_TRUE(follower.state.publish());
+    if (follower_alive) {
+      EXPECT_TRUE(follower.state.publish());
+    }
     std::this_thread::sleep_for(std::chrono::microseconds(500));
     node.cycle(harness.tick());
     return rendered();

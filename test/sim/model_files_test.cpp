@@ -37,9 +37,9 @@ bool is_arm_geom(const mjModel* m, int g) { return (m->geom_contype[g] & (2 | 4)
 TEST(ModelFiles, LoadsEveryModelAndSceneWhenCompiledByMujoco) {
   EXPECT_EQ(mj_version(), 222) << "these models are written for MuJoCo 2.2.2";
   const auto files = top_level_models();
-  const std::vector<std::string> expected{"dual_arm.xml",        "dual_arm_mobile.xml", "panda.xml",
-                                          "scene_box_shelf.xml", "scene_table.xml",     "scene_wall.xml",
-                                          "scene_wiping.xml"};
+  const std::vector<std::string> expected{"dual_arm.xml",    "dual_arm_mobile.xml", "left_arm.xml",
+                                          "right_arm.xml",   "panda.xml",           "scene_box_shelf.xml",
+                                          "scene_table.xml", "scene_wall.xml",      "scene_wiping.xml"};
   for (const auto& name : expected) {
     EXPECT_NE(std::find(files.begin(), files.end(), model_path(name)), files.end()) << name;
   }
@@ -126,6 +126,29 @@ TEST(DualArm, MirrorsTheRightHandOntoTheLeftWhenAtHome) {
   EXPECT_NEAR(left.y(), -right.y(), 1e-9);
   EXPECT_NEAR(left.z(), right.z(), 1e-9);
   EXPECT_NEAR(left.y() - right.y(), 0.4, 0.01);  // hands 0.4 m apart in "home"
+}
+
+TEST(SingleArmModels, PutTheFlangeWhereTheTwoArmBodyHasItWhenAtHome) {
+  // left_arm.xml / right_arm.xml model one arm of the robot on its own (controller model, haptic
+  // device): same mount, so the same flange pose for the same joints
+  MujocoModel body = MujocoModel::load(model_path("dual_arm.xml"));
+  body.reset("home");
+  for (const std::string side : {"left", "right"}) {
+    SCOPED_TRACE(side);
+    MujocoModel arm = MujocoModel::load(model_path(side + "_arm.xml"));
+    arm.reset("home");
+    ASSERT_EQ(arm.model()->nv, 7);
+    const int offset = side == "left" ? 0 : 7;
+    for (int j = 0; j < 7; ++j) EXPECT_DOUBLE_EQ(arm.data()->qpos[j], body.data()->qpos[offset + j]);
+    const std::string site = side + "_ee_site";
+    const Eigen::Vector3d in_body = test::vec3(body.data()->site_xpos + 3 * body.site_id(site));
+    const Eigen::Vector3d alone = test::vec3(arm.data()->site_xpos + 3 * arm.site_id(site));
+    EXPECT_LT((in_body - alone).norm(), 1e-9);
+    for (int k = 0; k < 9; ++k) {
+      EXPECT_NEAR(arm.data()->site_xmat[9 * arm.site_id(site) + k],
+                  body.data()->site_xmat[9 * body.site_id(site) + k], 1e-9);
+    }
+  }
 }
 
 TEST(SceneWall, ProducesConstraintForceWhenEeIsDrivenIntoTheWall) {

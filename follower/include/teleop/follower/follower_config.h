@@ -14,6 +14,9 @@
 namespace teleop::follower {
 
 struct FollowerConfig {
+  /// Which arm of a multi-arm robot this is ("" for a one-arm robot): names its topics
+  /// (transport/arm_topic.h).
+  std::string arm;
   size_t joints = 7;
   /// The robot: a MuJoCo simulation of the arm (real arms plug in as other RobotHardware).
   MujocoHardwareConfig mujoco;

@@ -1,29 +1,32 @@
 #pragma once
-// RobotHardware on a MuJoCo simulation of the arm (config/models): each write() applies the
-// torques plus gravity compensation and advances the simulation by one control period.
+// RobotHardware on a MuJoCo simulation (config/models): one arm of a MujocoScene. write()
+// applies the torques plus gravity compensation; the scene advances by one control period after
+// it — at once for a one-arm scene, or once every arm has written for a shared one (the owner of
+// the scene steps it then).
 
+#include <memory>
 #include <string>
 
+#include "teleop/follower/mujoco_scene.h"
 #include "teleop/follower/robot_hardware.h"
 #include "teleop/sim/actuated_joints.h"
-#include "teleop/sim/mujoco_model.h"
 
 namespace teleop::follower {
 
-struct MujocoHardwareConfig {
-  /// MJCF file of the arm (and its scene).
-  std::string model_path;
-  /// Keyframe to start from ("" = the model's default state).
-  std::string keyframe;
-  /// Control period; the model's timestep must divide it.
-  double period_s = 0.001;
+struct MujocoHardwareConfig : MujocoSceneConfig {
+  /// The arm: the hinge joints with a motor whose names start with this ("" = every one).
+  std::string joint_prefix;
+  /// The site on the end effector whose body's contacts make the external wrench.
+  std::string ee_site = "ee_site";
 };
 
 class MujocoHardware final : public RobotHardware {
  public:
-  /// Loads the model (throws std::runtime_error naming the file); the arm is the model's hinge
-  /// joints driven by its motor actuators, in actuator order.
+  /// The only arm of its own scene (loaded here; throws std::runtime_error naming the file):
+  /// write() steps it.
   explicit MujocoHardware(const MujocoHardwareConfig& config);
+  /// One arm of a shared scene: write() leaves the stepping to the scene's owner.
+  MujocoHardware(std::shared_ptr<MujocoScene> scene, const MujocoHardwareConfig& config);
 
   size_t joints() const override { return arm_.count; }
   [[nodiscard]] HardwareStatus read(ArmState& state) override;
@@ -36,19 +39,16 @@ class MujocoHardware final : public RobotHardware {
   /// Puts the arm at rest at `q_rad` (setup time, not for the control loop).
   void place(const JointVector& q_rad);
   /// The simulation, for tests and the twin (not for the control loop).
-  sim::MujocoModel& simulation() { return sim_; }
+  sim::MujocoModel& simulation() { return scene_->simulation(); }
 
  private:
-  void compute_gravity();
+  MujocoHardware(std::shared_ptr<MujocoScene> scene, const MujocoHardwareConfig& config, bool steps_scene);
   void compute_external_wrench(ArmState& state) const;
 
-  sim::MujocoModel sim_;
-  // a second data for gravity: the same pose at rest, so the simulation itself is not disturbed
-  std::unique_ptr<mjData, void (*)(mjData*)> rest_;
+  std::shared_ptr<MujocoScene> scene_;
+  bool steps_scene_;
   std::string name_;
   sim::ActuatedJoints arm_;
-  int substeps_ = 1;
-  JointVector gravity_nm_{};
   int ee_body_ = -1;
 };
 

@@ -36,6 +36,9 @@ struct CartesianGains {
 };
 
 struct LeaderConfig {
+  /// Which hand of a two-handed station this is ("" for a one-arm station): names its topics
+  /// (transport/arm_topic.h) and those of the follower's arm it commands.
+  std::string arm;
   size_t joints = 7;
   /// The follower's home pose [rad]: the command starts here whatever the device's pose.
   JointVector home_rad{};
@@ -65,6 +68,11 @@ struct LeaderConfig {
   double workspace_scale = 1.0;
   teleoperation::TeleoperationConfig teleoperation;
 };
+
+/// The recorded operator motion whose CSV file is `section.key` (joints and column prefix from
+/// `motion`). Throws ConfigError naming the file, line and problem.
+std::shared_ptr<const JointTrajectory> load_recording(const ConfigNode& section, const std::string& key,
+                                                     const OperatorMotionConfig& motion);
 
 class LeaderNode final : public runtime::NodeLogic {
  public:

@@ -6,6 +6,7 @@
 // Real-time safe.
 
 #include <memory>
+#include <string>
 
 #include "teleop/common/joint_model.h"
 #include "teleop/leader/joint_trajectory.h"
@@ -20,8 +21,9 @@ struct OperatorMotionConfig {
   double frequency_hz = 0.5;
   /// sine: the amplitude fades in over this time; push_hold: the duration of the push.
   double ramp_s = 1.0;
-  /// kRecorded: the motion, loaded at setup.
+  /// kRecorded: the motion, loaded at setup, and the prefix of its position columns.
   std::shared_ptr<const JointTrajectory> recording;
+  std::string recording_columns = "q_dev_";
 };
 
 class OperatorMotion {

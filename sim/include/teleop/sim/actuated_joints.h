@@ -19,7 +19,9 @@ struct ActuatedJoints {
   std::array<int, kMaxActuatedJoints> actuator{};  ///< index in ctrl
 };
 
-/// Finds them. Throws std::runtime_error naming `model_name` when there are none or too many.
-ActuatedJoints find_actuated_joints(const mjModel* m, const std::string& model_name);
+/// Finds them; with a `name_prefix` only the joints whose names start with it (one arm of a
+/// multi-arm model: "left_"). Throws std::runtime_error naming `model_name` when there are none
+/// or too many.
+ActuatedJoints find_actuated_joints(const mjModel* m, const std::string& model_name, const std::string& name_prefix = "");
 
 }  // namespace teleop::sim

@@ -23,8 +23,9 @@ enum class TdpaEnd { kLeader, kFollower };
 class TdpaLink {
  public:
   /// `controller_enabled` false: observe the energy balance only (pfc without TDPA reports it).
-  TdpaLink(transport::Participant& participant, const std::string& node_name, TdpaEnd end, std::size_t channels,
-           double cycle_s, bool controller_enabled, double max_damping);
+  /// `arm`: whose channel on a multi-arm robot ("" for a one-arm robot; transport/arm_topic.h).
+  TdpaLink(transport::Participant& participant, const std::string& node_name, const std::string& arm, TdpaEnd end,
+           std::size_t channels, double cycle_s, bool controller_enabled, double max_damping);
 
   /// Takes the newest packet from the other end, if one arrived.
   void receive();

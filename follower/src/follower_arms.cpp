@@ -1,0 +1,63 @@
+#include "teleop/follower/follower_arms.h"
+
+#include <memory>
+
+#include "teleop/common/joint_config.h"
+#include "teleop/follower/follower_node.h"
+#include "teleop/follower/mujoco_hardware.h"
+#include "teleop/runtime/arm_group.h"
+
+namespace teleop::follower {
+namespace {
+
+constexpr Range kAngle{-2 * M_PI, 2 * M_PI};
+
+// an arm's own keys on top of the shared `follower:` section
+FollowerConfig arm_config(const FollowerConfig& shared, const std::string& name, const ConfigNode& a) {
+  FollowerConfig c = shared;
+  c.arm = name;
+  c.mujoco.joint_prefix = a.get_string("joint_prefix");
+  c.mujoco.ee_site = a.get_string("ee_site");
+  c.control.model_path = a.get_path("control_model");
+  c.control.ee_site = c.mujoco.ee_site;
+  if (a.has("rest_posture_rad")) {
+    const JointVector rest = read_joint_list(a, "rest_posture_rad", c.joints, kAngle, 0.0);
+    c.control.rest_posture_rad = Eigen::Map<const control::JointVector>(rest.data());
+  }
+  return c;
+}
+
+std::unique_ptr<runtime::NodeLogic> build_arms(const std::vector<FollowerConfig>& arms, runtime::NodeContext& context) {
+  if (arms.size() == 1 && arms.front().arm.empty()) return std::make_unique<FollowerNode>(arms.front(), context);
+  MujocoSceneConfig scene_config = arms.front().mujoco;
+  scene_config.period_s = 1.0 / context.node.rate_hz;
+  auto scene = std::make_shared<MujocoScene>(scene_config);
+  std::vector<runtime::ArmGroup::Arm> group;
+  for (const FollowerConfig& arm : arms) {
+    group.push_back({arm.arm, std::make_unique<FollowerNode>(arm, std::make_unique<MujocoHardware>(scene, arm.mujoco), context)});
+  }
+  // each arm wrote its torques in its cycle: now the world they share moves on
+  return std::make_unique<runtime::ArmGroup>(std::move(group), [scene] { scene->step(); });
+}
+
+}  // namespace
+
+std::vector<FollowerConfig> parse_follower_arms(const ConfigNode& root) {
+  const FollowerConfig shared = parse_follower_config(root);
+  const ConfigNode s = root.child("follower");
+  const auto arms = s.optional_child("arms");
+  if (!arms) return {shared};
+  std::vector<FollowerConfig> configs;
+  for (const std::string& name : arms->keys()) configs.push_back(arm_config(shared, name, arms->child(name)));
+  if (configs.empty()) throw s.error("arms", "names no arm");
+  return configs;
+}
+
+runtime::LogicParser follower_logic_parser() {
+  return [](const ConfigNode& root) -> runtime::LogicBuilder {
+    auto arms = parse_follower_arms(root);
+    return [arms](runtime::NodeContext& context) { return build_arms(arms, context); };
+  };
+}
+
+}  // namespace teleop::follower

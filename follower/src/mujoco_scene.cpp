@@ -1,0 +1,54 @@
+#include "teleop/follower/mujoco_scene.h"
+
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+
+namespace teleop::follower {
+namespace {
+
+void delete_data(mjData* d) { mj_deleteData(d); }
+
+}  // namespace
+
+MujocoScene::MujocoScene(const MujocoSceneConfig& config)
+    : sim_(sim::MujocoModel::load(config.model_path)),
+      rest_(nullptr, delete_data),
+      file_name_(std::filesystem::path(config.model_path).filename().string()) {
+  const mjModel* m = sim_.model();
+  if (!config.keyframe.empty()) sim_.reset(config.keyframe);
+  rest_.reset(mj_makeData(m));
+  const double steps = config.period_s / m->opt.timestep;
+  substeps_ = static_cast<int>(std::lround(steps));
+  if (substeps_ < 1 || std::abs(steps - substeps_) > 1e-6) {
+    throw std::runtime_error(config.model_path + ": timestep " + std::to_string(m->opt.timestep) +
+                             " s does not divide the control period " + std::to_string(config.period_s) + " s");
+  }
+  mj_forward(m, sim_.data());
+}
+
+void MujocoScene::step() {
+  for (int s = 0; s < substeps_; ++s) mj_step(sim_.model(), sim_.data());
+  gravity_current_ = false;
+}
+
+void MujocoScene::state_changed() {
+  mj_forward(sim_.model(), sim_.data());
+  gravity_current_ = false;
+}
+
+const mjtNum* MujocoScene::gravity() {
+  if (!gravity_current_) {
+    const mjModel* m = sim_.model();
+    // the same pose at rest: the bias forces are then gravity alone
+    mju_copy(rest_->qpos, sim_.data()->qpos, m->nq);
+    mju_zero(rest_->qvel, m->nv);
+    mj_kinematics(m, rest_.get());
+    mj_comPos(m, rest_.get());
+    mj_rne(m, rest_.get(), 0, rest_->qfrc_bias);
+    gravity_current_ = true;
+  }
+  return rest_->qfrc_bias;
+}
+
+}  // namespace teleop::follower

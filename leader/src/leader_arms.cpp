@@ -1,0 +1,56 @@
+#include "teleop/leader/leader_arms.h"
+
+#include <memory>
+
+#include "teleop/common/joint_config.h"
+#include "teleop/runtime/arm_group.h"
+
+namespace teleop::leader {
+namespace {
+
+// a hand's own keys on top of the shared `leader:` section
+LeaderConfig arm_config(const LeaderConfig& shared, const std::string& name, const ConfigNode& a) {
+  LeaderConfig c = shared;
+  c.arm = name;
+  // the hand's device is mounted like the robot's arm: one model for the device and the mapping
+  c.arm_model = a.get_path("model");
+  c.haptic_arm.model.model_path = c.arm_model;
+  c.ee_site = a.get_string("ee_site");
+  c.home_rad = read_joint_list(a, "home_rad", c.joints, Range{-2 * M_PI, 2 * M_PI}, 0.0);
+  c.motion.home_rad = c.home_rad;
+  if (c.motion.kind == OperatorMotionConfig::Kind::kRecorded) {
+    c.motion.recording = load_recording(a, "recording", c.motion);
+  } else if (a.has("recording")) {
+    throw a.error("recording", "only for leader.motion: recorded");
+  }
+  return c;
+}
+
+std::unique_ptr<runtime::NodeLogic> build_arms(const std::vector<LeaderConfig>& arms, runtime::NodeContext& context) {
+  if (arms.size() == 1 && arms.front().arm.empty()) return std::make_unique<LeaderNode>(arms.front(), context);
+  std::vector<runtime::ArmGroup::Arm> group;
+  for (const LeaderConfig& arm : arms) group.push_back({arm.arm, std::make_unique<LeaderNode>(arm, context)});
+  return std::make_unique<runtime::ArmGroup>(std::move(group));
+}
+
+}  // namespace
+
+std::vector<LeaderConfig> parse_leader_arms(const ConfigNode& root) {
+  const LeaderConfig shared = LeaderNode::parse_config(root);
+  const ConfigNode s = root.child("leader");
+  const auto arms = s.optional_child("arms");
+  if (!arms) return {shared};
+  std::vector<LeaderConfig> configs;
+  for (const std::string& name : arms->keys()) configs.push_back(arm_config(shared, name, arms->child(name)));
+  if (configs.empty()) throw s.error("arms", "names no hand");
+  return configs;
+}
+
+runtime::LogicParser leader_logic_parser() {
+  return [](const ConfigNode& root) -> runtime::LogicBuilder {
+    auto arms = parse_leader_arms(root);
+    return [arms](runtime::NodeContext& context) { return build_arms(arms, context); };
+  };
+}
+
+}  // namespace teleop::leader
