@@ -101,9 +101,14 @@ TEST_F(ModelCorrectionTest, IgnoresAndCountsNonFiniteAndMalformedSamples) {
   JointVector q = home;
   q[0] = std::numeric_limits<double>::quiet_NaN();
   follower_at(q, -15.0, 20);
+  // three angles for a seven-joint arm (published as is, not through follower_at, which resizes)
   follower.state.sample().q_rad().resize(3);
-  follower_at(home, -15.0, 20);
-  follower.state.sample().q_rad().resize(kJoints);
+  for (int i = 0; i < 20; ++i) {
+    ASSERT_TRUE(follower.state.publish());
+    ASSERT_TRUE(follower.wrench.publish());
+    std::this_thread::sleep_for(std::chrono::microseconds(300));
+    node.cycle(harness.tick());
+  }
   EXPECT_GT(counter("correction_rejected"), 0);
   EXPECT_GT(counter("correction_malformed"), 0);
   EXPECT_EQ(counter("correction_contact_updates"), 0);
