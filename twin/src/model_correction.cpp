@@ -1,5 +1,6 @@
 #include "teleop/twin/model_correction.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 

@@ -34,10 +34,7 @@ HilConfig read_hil(const ConfigNode& s) {
 CorrectionConfig read_correction(const ConfigNode& s) {
   CorrectionConfig c;
   c.geom = s.get_string("geom");
-  c.probe = s.get_string("probe", c.probe);
-  if (c.probe.rfind("geom:", 0) != 0 && c.probe.rfind("body:", 0) != 0) {
-    throw s.error("probe", "expected 'geom:NAME' or 'body:NAME', got '" + c.probe + "'");
-  }
+  if (s.has("probe")) c.probe = read_side(s, "probe");
   c.normal = read_direction(s, "normal");
   c.contact_force_n = s.get_double("contact_force_n", Range{0.01, 1e4}, c.contact_force_n);
   c.free_force_n = s.get_double("free_force_n", Range{0, 1e4}, c.free_force_n);

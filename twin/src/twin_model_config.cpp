@@ -5,7 +5,6 @@
 #include "teleop/common/joint_config.h"
 
 namespace teleop::twin {
-namespace {
 
 std::string read_side(const ConfigNode& node, const std::string& key) {
   std::string side = node.get_string(key);
@@ -14,6 +13,8 @@ std::string read_side(const ConfigNode& node, const std::string& key) {
   }
   return side;
 }
+
+namespace {
 
 std::vector<GeomPair> read_pairs(const ConfigNode& section, const std::string& key) {
   std::vector<GeomPair> pairs;

@@ -60,6 +60,9 @@ struct TwinModelConfig {
   double distance_range_m = 1.0;
 };
 
+/// A pair side, "geom:NAME" or "body:NAME" (not resolved here). Throws ConfigError.
+std::string read_side(const ConfigNode& node, const std::string& key);
+
 /// A direction (three numbers in [-1, 1], not all zero) scaled to unit length. Throws ConfigError.
 std::array<double, 3> read_direction(const ConfigNode& section, const std::string& key);
 
