@@ -6,11 +6,11 @@
 #include <limits>
 #include <thread>
 
-#include "allocation_counter.h"
 #include "node_harness.h"
 #include "report_counter.h"
 #include "teleop/transport/joint_fields.h"
 #include "teleop/twin/twin_node.h"
+#include "twin_node_test_util.h"
 #include "twin_test_util.h"
 
 namespace teleop::twin {
@@ -62,11 +62,7 @@ class ModelCorrectionTest : public ::testing::Test {
 
   // the follower at `q` pushed with `force_x_n` along x, for `cycles` of the twin
   void follower_at(const JointVector& q, double force_x_n, int cycles) {
-    for (int i = 0; i < cycles; ++i) {
-      follower.publish(q, force_x_n);
-      std::this_thread::sleep_for(std::chrono::microseconds(300));
-      node.cycle(harness.tick());
-    }
+    (void)test::drive_cycles(node, harness, cycles, [&](int) { follower.publish(q, force_x_n); });
   }
 
   double counter(const std::string& name) const {
@@ -103,12 +99,10 @@ TEST_F(ModelCorrectionTest, IgnoresAndCountsNonFiniteAndMalformedSamples) {
   follower_at(q, -15.0, 20);
   // three angles for a seven-joint arm (published as is, not through follower_at, which resizes)
   follower.state.sample().q_rad().resize(3);
-  for (int i = 0; i < 20; ++i) {
-    ASSERT_TRUE(follower.state.publish());
-    ASSERT_TRUE(follower.wrench.publish());
-    std::this_thread::sleep_for(std::chrono::microseconds(300));
-    node.cycle(harness.tick());
-  }
+  (void)test::drive_cycles(node, harness, 20, [&](int) {
+    EXPECT_TRUE(follower.state.publish());
+    EXPECT_TRUE(follower.wrench.publish());
+  });
   EXPECT_GT(counter("correction_rejected"), 0);
   EXPECT_GT(counter("correction_malformed"), 0);
   EXPECT_EQ(counter("correction_contact_updates"), 0);
@@ -117,17 +111,10 @@ TEST_F(ModelCorrectionTest, IgnoresAndCountsNonFiniteAndMalformedSamples) {
 
 TEST_F(ModelCorrectionTest, CycleWithTheCorrectionDoesNotAllocate) {
   follower_at(home, -15.0, 100);
-  uint64_t allocations = 0;
-  for (int i = 0; i < 300; ++i) {
-    follower.publish(home, -15.0);
-    std::this_thread::sleep_for(std::chrono::microseconds(300));
-    const CycleTick tick = harness.tick();
-    teleop::test::ScopedAllocationCounter counter;
-    node.cycle(tick);
-    allocations += counter.count();
-  }
+  const uint64_t allocations =
+      test::drive_cycles(node, harness, 300, [&](int) { follower.publish(home, -15.0); });
   EXPECT_EQ(allocations, 0u);
-  EXPECT_GT(this->counter("correction_contact_updates"), 100);
+  EXPECT_GT(counter("correction_contact_updates"), 100);
 }
 
 }  // namespace
