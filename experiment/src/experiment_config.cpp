@@ -3,6 +3,7 @@
 #include <set>
 
 #include "teleop/common/config.h"
+#include "teleop/launcher/launcher.h"
 #include "teleop/launcher/scenario.h"
 
 namespace teleop::experiment {
@@ -31,16 +32,23 @@ std::vector<RunSpec> parse_runs(const ConfigNode& e) {
   std::vector<RunSpec> runs;
   std::set<std::string> names;
   for (const ConfigNode& r : e.get_node_list("runs")) {
-    RunSpec run{r.get_string("name"), r.get_path("scenario")};
+    RunSpec run{r.get_string("name"), r.get_path("scenario"), r.get_string_list("set")};
     if (run.name.empty() || run.name.find_first_of("/ ,") != std::string::npos) {
       throw r.error("name", "must be non-empty without '/', ',' or spaces (it names a folder and a table row)");
     }
     if (!names.insert(run.name).second) throw r.error("name", "'" + run.name + "' is used by two runs");
     // a broken scenario fails here, before the first run starts
+    launcher::Scenario scenario;
     try {
-      launcher::load_scenario(run.scenario);
+      scenario = launcher::load_scenario(run.scenario);
     } catch (const ConfigError& error) {
       throw r.error("scenario", std::string("invalid scenario: ") + error.what());
+    }
+    // and so does an override naming no node of it
+    try {
+      for (const auto& node : scenario.nodes) launcher::node_overrides(scenario, node, run.sets);
+    } catch (const ConfigError& error) {
+      throw r.error("set", error.what());
     }
     runs.push_back(std::move(run));
   }

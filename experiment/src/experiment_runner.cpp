@@ -138,6 +138,7 @@ ExperimentResult run_experiment(const ExperimentConfig& config, const Experiment
       // the whole run and then some: the ring never drops the start the analysis aligns on
       launch.trace_seconds = duration_s + run.scenario.stop_timeout_s + 5.0;
       launch.bin_dir = options.bin_dir;
+      launch.sets = run.spec->sets;
       std::printf("\n[experiment] === %s: run %s, profile %s (%zu of %zu, domain %d) ===\n", config.name.c_str(),
                   run.spec->name.c_str(), profile.c_str(), result.rows.size() + 1, total, *launch.domain_id);
       std::fflush(stdout);

@@ -30,7 +30,7 @@ class ExperimentFile : public ::testing::Test {
 TEST_F(ExperimentFile, ReadsEveryFieldAndResolvesScenariosNextToTheFile) {
   const ExperimentConfig c = load_experiment(
       write("  name: stiff_wall\n  duration_s: 10\n  seed: 7\n  profiles: [lan, none]\n" + std::string(kRuns) +
-            "    - {name: mmt, scenario: ./scenario.yaml}\n"
+            "    - {name: mmt, scenario: ./scenario.yaml, set: [\"leader:node.rate_hz=500\"]}\n"
             "  analysis:\n    leader: leader\n    follower: follower\n    settle_s: 1.5\n"
             "    hold_window_s: [6.0, 9.5]\n    stable_max_mad_rad: 2.0e-4\n    stable_max_saturation: 0.02\n"));
   EXPECT_EQ(c.name, "stiff_wall");
@@ -40,6 +40,8 @@ TEST_F(ExperimentFile, ReadsEveryFieldAndResolvesScenariosNextToTheFile) {
   ASSERT_EQ(c.runs.size(), 2u);
   EXPECT_EQ(c.runs[1].name, "mmt");
   EXPECT_EQ(c.runs[1].scenario, dir_.path("scenario.yaml"));
+  EXPECT_TRUE(c.runs[0].sets.empty());
+  EXPECT_EQ(c.runs[1].sets, (std::vector<std::string>{"leader:node.rate_hz=500"}));
   EXPECT_DOUBLE_EQ(c.analysis.settle_s, 1.5);
   EXPECT_DOUBLE_EQ(c.analysis.hold.begin_s, 6.0);
   EXPECT_DOUBLE_EQ(c.analysis.hold.end_s, 9.5);
@@ -82,6 +84,14 @@ TEST_F(ExperimentFile, NamesTheRunWhenItsScenarioIsInvalid) {
   EXPECT_NE(e.find(dir_.path("e.yaml") + ":5: experiment.runs[0].scenario: invalid scenario: "), std::string::npos)
       << e;
   EXPECT_NE(e.find("bad_scenario.yaml:2: nodes: a scenario needs at least one node"), std::string::npos) << e;
+}
+
+TEST_F(ExperimentFile, NamesTheRunWhenAnOverrideNamesNoNodeOfItsScenario) {
+  const std::string e =
+      error_for("  name: x\n  profiles: [none]\n  runs:\n    - {name: a, scenario: scenario.yaml, set: [\"twin:a=1\"]}\n");
+  EXPECT_NE(e.find(dir_.path("e.yaml") + ":5: experiment.runs[0].set: --set twin:a=1: scenario s has no node 'twin'"),
+            std::string::npos)
+      << e;
 }
 
 }  // namespace

@@ -60,5 +60,34 @@ TEST(TwinConfig, HilModeNeedsItsGoal) {
   EXPECT_NE(error_of(twin_yaml("", "  mode: hil\n")).find("twin.hil"), std::string::npos);
 }
 
+TEST(TwinConfig, ReadsTheMmtCorrectionAndTheModelsGeomOffsets) {
+  const TwinConfig c = parse_twin_config(ConfigNode::load_string(
+      twin_yaml("    geom_offsets: [{geom: wall, offset_m: [0.02, 0, 0]}]\n",
+                "  mmt:\n    correction: {geom: wall, normal: [-0.5, 0, 0], rate_m_per_s: 0.01, timeout_ms: 50}\n"),
+      "twin.yaml"));
+  ASSERT_EQ(c.model.geom_offsets.size(), 1u);
+  EXPECT_EQ(c.model.geom_offsets[0].geom, "wall");
+  EXPECT_DOUBLE_EQ(c.model.geom_offsets[0].offset_m[0], 0.02);
+  ASSERT_TRUE(c.mmt.correction.has_value());
+  EXPECT_EQ(c.mmt.correction->geom, "wall");
+  EXPECT_DOUBLE_EQ(c.mmt.correction->normal[0], -1.0) << "scaled to unit length";
+  EXPECT_DOUBLE_EQ(c.mmt.correction->rate_m_per_s, 0.01);
+  EXPECT_DOUBLE_EQ(c.mmt.correction->timeout_s, 0.05);
+  EXPECT_FALSE(parse_twin_config(ConfigNode::load_string(twin_yaml(""), "twin.yaml")).mmt.correction.has_value())
+      << "absent: no correction";
+}
+
+TEST(TwinConfig, RejectsAnInconsistentCorrection) {
+  const auto correction = [](const std::string& body) { return "  mmt:\n    correction: {" + body + "}\n"; };
+  std::string e = error_of(twin_yaml("", correction("geom: wall, normal: [0, 0, 0]")));
+  EXPECT_NE(e.find("twin.mmt.correction.normal: must not be zero"), std::string::npos) << e;
+  e = error_of(twin_yaml("", correction("geom: wall, normal: [-1, 0, 0], contact_force_n: 2, free_force_n: 3")));
+  EXPECT_NE(e.find("twin.mmt.correction.free_force_n: must not exceed contact_force_n"), std::string::npos) << e;
+  e = error_of(twin_yaml("", correction("geom: wall, normal: [-1, 0, 0], probe: link7")));
+  EXPECT_NE(e.find("twin.mmt.correction.probe"), std::string::npos) << e;
+  e = error_of(twin_yaml("", correction("normal: [-1, 0, 0]")));
+  EXPECT_NE(e.find("twin.mmt.correction.geom"), std::string::npos) << e;
+}
+
 }  // namespace
 }  // namespace teleop::twin

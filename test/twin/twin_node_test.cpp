@@ -8,6 +8,7 @@
 #include "allocation_counter.h"
 #include "node_harness.h"
 #include "teleop/transport/joint_fields.h"
+#include "twin_node_test_util.h"
 #include "twin_test_util.h"
 
 namespace teleop::twin {
@@ -129,17 +130,11 @@ TEST_F(TwinNodeTest, CountsMalformedLeaderSamples) {
 
 TEST_F(TwinNodeTest, CycleDoesNotAllocate) {
   hold_leader_at(0.2, 200);
-  uint64_t allocations = 0;
-  for (int i = 0; i < 500; ++i) {
+  const uint64_t allocations = test::drive_cycles(node, harness, 500, [&](int i) {
     transport::copy_joints(home, kJoints, leader.state.sample().q_rad());
     leader.state.sample().q_rad()[kShoulder] += 0.2 + 1e-4 * i;
-    ASSERT_TRUE(leader.state.publish());
-    std::this_thread::sleep_for(std::chrono::microseconds(300));
-    const CycleTick tick = harness.tick();
-    teleop::test::ScopedAllocationCounter counter;
-    node.cycle(tick);
-    allocations += counter.count();
-  }
+    EXPECT_TRUE(leader.state.publish());
+  });
   EXPECT_EQ(allocations, 0u);
 }
 

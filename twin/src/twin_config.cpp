@@ -31,6 +31,22 @@ HilConfig read_hil(const ConfigNode& s) {
   return c;
 }
 
+CorrectionConfig read_correction(const ConfigNode& s) {
+  CorrectionConfig c;
+  c.geom = s.get_string("geom");
+  if (s.has("probe")) c.probe = read_side(s, "probe");
+  c.normal = read_direction(s, "normal");
+  c.contact_force_n = s.get_double("contact_force_n", Range{0.01, 1e4}, c.contact_force_n);
+  c.free_force_n = s.get_double("free_force_n", Range{0, 1e4}, c.free_force_n);
+  if (c.free_force_n > c.contact_force_n) throw s.error("free_force_n", "must not exceed contact_force_n");
+  c.free_margin_m = s.get_double("free_margin_m", Range{0, 0.1}, c.free_margin_m);
+  c.rate_m_per_s = s.get_double("rate_m_per_s", Range{1e-6, 1}, c.rate_m_per_s);
+  c.max_offset_m = s.get_double("max_offset_m", Range{0, 1}, c.max_offset_m);
+  c.timeout_s = s.get_double("timeout_ms", Range{1, 60'000}, c.timeout_s * 1e3) * 1e-3;
+  c.max_skew_s = s.get_double("max_skew_ms", Range{0, 1000}, c.max_skew_s * 1e3) * 1e-3;
+  return c;
+}
+
 }  // namespace
 
 TwinConfig parse_twin_config(const ConfigNode& root) {
@@ -53,6 +69,7 @@ TwinConfig parse_twin_config(const ConfigNode& root) {
   if (auto mmt = s.optional_child("mmt")) {
     c.mmt.stiffness_nm_per_rad = mmt->get_double("follower_stiffness_nm_per_rad", Range{0, 1e5}, c.mmt.stiffness_nm_per_rad);
     c.mmt.damping_nms_per_rad = mmt->get_double("follower_damping_nms_per_rad", Range{0, 1e4}, c.mmt.damping_nms_per_rad);
+    if (auto correction = mmt->optional_child("correction")) c.mmt.correction = read_correction(*correction);
   }
   if (c.mmt.enabled && (c.mode != TwinMode::kRealtime || c.coupled_to != TwinConfig::CoupledTo::kLeader)) {
     throw s.error("mode", "teleoperation.architecture mmt needs mode: realtime and coupled_to: leader");

@@ -5,7 +5,6 @@
 #include "teleop/common/joint_config.h"
 
 namespace teleop::twin {
-namespace {
 
 std::string read_side(const ConfigNode& node, const std::string& key) {
   std::string side = node.get_string(key);
@@ -14,6 +13,8 @@ std::string read_side(const ConfigNode& node, const std::string& key) {
   }
   return side;
 }
+
+namespace {
 
 std::vector<GeomPair> read_pairs(const ConfigNode& section, const std::string& key) {
   std::vector<GeomPair> pairs;
@@ -31,15 +32,28 @@ void read_margins(const ConfigNode& section, TwinModelConfig& c) {
                                 s.get_double("radius_m", Range{1e-3, 2})});
   }
   for (const ConfigNode& p : margins->get_node_list("planes")) {
-    MarginPlane plane{p.get_string("name"), read_vector3(p, "point_m", Range{-100, 100}),
-                      read_vector3(p, "normal", Range{-1, 1})};
-    const auto& n = plane.normal;
-    if (std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) < 1e-6) throw p.error("normal", "must not be zero");
-    c.margin_planes.push_back(plane);
+    c.margin_planes.push_back(
+        {p.get_string("name"), read_vector3(p, "point_m", Range{-100, 100}), read_direction(p, "normal")});
   }
 }
 
+std::vector<GeomOffset> read_geom_offsets(const ConfigNode& section) {
+  std::vector<GeomOffset> offsets;
+  for (const ConfigNode& o : section.get_node_list("geom_offsets")) {
+    offsets.push_back({o.get_string("geom"), read_vector3(o, "offset_m", Range{-1, 1})});
+  }
+  return offsets;
+}
+
 }  // namespace
+
+std::array<double, 3> read_direction(const ConfigNode& section, const std::string& key) {
+  std::array<double, 3> v = read_vector3(section, key, Range{-1, 1});
+  const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (length < 1e-6) throw section.error(key, "must not be zero");
+  for (double& x : v) x /= length;
+  return v;
+}
 
 TwinModelConfig read_twin_model_config(const ConfigNode& section) {
   TwinModelConfig c;
@@ -51,6 +65,7 @@ TwinModelConfig read_twin_model_config(const ConfigNode& section) {
   read_margins(section, c);
   c.contact_pairs = read_pairs(section, "contact_pairs");
   c.distance_pairs = read_pairs(section, "distance_pairs");
+  c.geom_offsets = read_geom_offsets(section);
   c.distance_range_m = section.get_double("distance_range_m", Range{1e-3, 100}, c.distance_range_m);
   return c;
 }

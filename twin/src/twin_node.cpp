@@ -73,6 +73,7 @@ TwinNode::TwinNode(const TwinConfig& config, runtime::NodeContext& context)
     transport::presize(joints_, cmd.q_des_rad(), cmd.dq_des_radps(), cmd.tau_ff_nm());
     cmd.stiffness_nm_per_rad().assign(joints_, config.mmt.stiffness_nm_per_rad);
     cmd.damping_nms_per_rad().assign(joints_, config.mmt.damping_nms_per_rad);
+    if (config.mmt.correction) correction_.emplace(*config.mmt.correction, sim_, context.participant);
   }
   auto& st = state_pub_.sample();
   st.robot("twin");
@@ -125,6 +126,8 @@ void TwinNode::cycle_coupled(const CycleTick& tick) {
   } else if (state_ == msg::STATE_RUNNING) {
     state_ = msg::STATE_SAFE_HOLD;
   }
+  // the follower's measurements move the twin's environment between steps
+  if (correction_) correction_->cycle(sim_, sim_.config().period_s);
   // without a coupled robot the twin holds the last pose it was given
   sim_.step_coupled(q_coupled_);
   render_feedback(fresh);
@@ -282,18 +285,21 @@ void TwinNode::fill_report(runtime::NodeReport& report) const {
   }
   if (command_pub_) report.add(*command_pub_);
   if (hil_) report.counters.emplace_back("hil_goal_error_rad", goal_error_rad_);
+  if (correction_) correction_->fill_report(report);
 }
 
 void TwinNode::trace_columns(std::vector<std::string>& columns) const {
   columns.emplace_back("state");
   for (size_t i = 0; i < joints_; ++i) columns.push_back("q_" + std::to_string(i));
   for (size_t i = 0; i < joints_; ++i) columns.push_back("tau_fb_" + std::to_string(i));
+  if (correction_) correction_->trace_columns(columns);
 }
 
 void TwinNode::trace_row(double* row) const {
   *row++ = static_cast<double>(state_);
   row = std::copy_n(sim_.q_rad().begin(), joints_, row);
-  std::copy_n(feedback_nm_.begin(), joints_, row);
+  row = std::copy_n(feedback_nm_.begin(), joints_, row);
+  if (correction_) correction_->trace_row(row);
 }
 
 }  // namespace teleop::twin

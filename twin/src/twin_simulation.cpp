@@ -1,5 +1,6 @@
 #include "teleop/twin/twin_simulation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -60,7 +61,22 @@ TwinSimulation::TwinSimulation(const TwinModelConfig& config)
       efc_rendered_(static_cast<size_t>(std::max(sim_.model()->njmax, 1))),
       qfrc_rendered_(static_cast<size_t>(sim_.model()->nv)) {
   for (size_t i = 0; i < joints_.count; ++i) model_damping_[i] = sim_.model()->dof_damping[joints_.dof[i]];
+  apply_geom_offsets();
   reset();
+}
+
+void TwinSimulation::apply_geom_offsets() {
+  mjModel* m = sim_.model();
+  for (const GeomOffset& o : config_.geom_offsets) {
+    // throws std::out_of_range naming the model file and the geom
+    const int g = sim_.geom_id(o.geom);
+    for (int k = 0; k < 3; ++k) m->geom_pos[3 * g + k] += o.offset_m[static_cast<size_t>(k)];
+  }
+}
+
+void TwinSimulation::set_geom_position(int geom, const std::array<double, 3>& pos_m) {
+  // mj_kinematics places every geom from geom_pos each step, static ones of the world body too
+  std::copy(pos_m.begin(), pos_m.end(), sim_.model()->geom_pos + 3 * geom);
 }
 
 void TwinSimulation::reset() {

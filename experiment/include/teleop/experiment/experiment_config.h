@@ -14,6 +14,8 @@ namespace teleop::experiment {
 struct RunSpec {
   std::string name;
   std::string scenario;  ///< path, resolved relative to the experiment file
+  /// Overrides for this run, `NODE:KEY=VALUE` as `teleop launch --set` (after the scenario's own).
+  std::vector<std::string> sets;
 };
 
 struct ExperimentConfig {

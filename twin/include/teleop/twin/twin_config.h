@@ -1,10 +1,12 @@
 #pragma once
 // Configuration of the twin node (`twin:` section, config/nodes/twin*.yaml, docs/twin.md).
 
+#include <optional>
 #include <string>
 
 #include "teleop/common/config.h"
 #include "teleop/common/joint_model.h"
+#include "teleop/twin/environment_correction.h"
 #include "teleop/twin/twin_model_config.h"
 
 namespace teleop::twin {
@@ -48,6 +50,8 @@ struct MmtConfig {
   bool enabled = false;
   double stiffness_nm_per_rad = 400.0;
   double damping_nms_per_rad = 20.0;
+  /// The follower's measurements correct the twin's environment (absent: the model is trusted).
+  std::optional<CorrectionConfig> correction;
 };
 
 struct TwinConfig {

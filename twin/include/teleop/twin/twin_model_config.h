@@ -33,6 +33,13 @@ struct GeomPair {
   std::string b;
 };
 
+/// A deliberate model error (experiments, tests: "the twin's wall is 2 cm off"): the geom moved by
+/// `offset_m` in its body's frame (the world's for a geom of the world body) when the model loads.
+struct GeomOffset {
+  std::string geom;
+  std::array<double, 3> offset_m{};
+};
+
 struct TwinModelConfig {
   std::string model_path;
   /// Start pose ("" = the model's default state).
@@ -48,9 +55,16 @@ struct TwinModelConfig {
   std::vector<MarginPlane> margin_planes;
   std::vector<GeomPair> contact_pairs;
   std::vector<GeomPair> distance_pairs;
+  std::vector<GeomOffset> geom_offsets;
   /// Distances beyond this are reported as this value [m] (the collision test's search margin).
   double distance_range_m = 1.0;
 };
+
+/// A pair side, "geom:NAME" or "body:NAME" (not resolved here). Throws ConfigError.
+std::string read_side(const ConfigNode& node, const std::string& key);
+
+/// A direction (three numbers in [-1, 1], not all zero) scaled to unit length. Throws ConfigError.
+std::array<double, 3> read_direction(const ConfigNode& section, const std::string& key);
 
 /// Reads the `model:` part of the twin section (paths relative to the config file).
 TwinModelConfig read_twin_model_config(const ConfigNode& section);

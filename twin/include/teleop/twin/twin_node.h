@@ -18,6 +18,7 @@
 #include "teleop/transport/subscription.h"
 #include "teleop/twin/hil_controller.h"
 #include "teleop/twin/lockstep_link.h"
+#include "teleop/twin/model_correction.h"
 #include "teleop/twin/twin_config.h"
 #include "teleop/twin/twin_simulation.h"
 
@@ -39,6 +40,8 @@ class TwinNode final : public runtime::NodeLogic {
   void trace_row(double* row) const override;
 
   const TwinSimulation& simulation() const { return sim_; }
+  /// MMT's model update from the follower's measurements (absent unless configured).
+  const std::optional<ModelCorrection>& model_correction() const { return correction_; }
 
  private:
   void cycle_coupled(const CycleTick& tick);
@@ -62,6 +65,7 @@ class TwinNode final : public runtime::NodeLogic {
   std::optional<LockstepLink> lockstep_;
   std::optional<HilController> hil_;
   std::optional<transport::Publication<msg::JointCommand>> command_pub_;
+  std::optional<ModelCorrection> correction_;
 
   msg::NodeState state_ = msg::STATE_STARTING;
   JointVector q_coupled_{};

@@ -41,6 +41,10 @@ class TwinSimulation {
   /// recomputed (mj_forward), nothing is integrated. Real-time safe.
   void set_state(const JointVector& q_rad, const JointVector& dq_radps);
 
+  /// Puts a geom at `pos_m` in its body's frame (mjModel::geom_pos); the next step sees it there.
+  /// Between steps only. Real-time safe.
+  void set_geom_position(int geom, const std::array<double, 3>& pos_m);
+
   size_t joints() const { return joints_.count; }
   const JointVector& q_rad() const { return q_; }
   const JointVector& dq_radps() const { return dq_; }
@@ -73,6 +77,7 @@ class TwinSimulation {
   void advance(TorqueLaw&& law);
   void read_back();
   void set_joint_damping(const JointVector& damping_nms_per_rad);
+  void apply_geom_offsets();
 
   TwinModelConfig config_;
   sim::MujocoModel sim_;
