@@ -123,7 +123,9 @@ BoxTaskMetrics evaluate_box_task(const BoxTaskSeries& series, const BoxRegion& s
   metrics.success = metrics.in_shelf && metrics.resting && !metrics.dropped;
   const double placed = placed_time_s(series, shelf, thresholds.contact_n);
   metrics.task_time_s = series.samples.empty() ? kNaN : placed - series.samples.front().t_s;
-  for (const BoxTaskSample& s : series.samples) metrics.max_arm_env_n = std::max(metrics.max_arm_env_n, s.arm_env_n);
+  for (const BoxTaskSample& s : series.samples) {
+    metrics.max_arm_collision_n = std::max(metrics.max_arm_collision_n, s.arm_collision_n);
+  }
   return metrics;
 }
 

@@ -24,7 +24,7 @@ Eigen::Vector3d vec3(const mjtNum* p) { return {p[0], p[1], p[2]}; }
 }  // namespace
 
 BoxTaskProbe::BoxTaskProbe(const mjModel* scene)
-    : kind_(static_cast<size_t>(scene->ngeom), Kind::kOther),
+    : kind_(static_cast<size_t>(scene->ngeom), Kind::kRobotBody),
       box_body_(id_or_throw(scene, mjOBJ_BODY, "box")),
       left_site_(id_or_throw(scene, mjOBJ_SITE, "left_ee_site")),
       right_site_(id_or_throw(scene, mjOBJ_SITE, "right_ee_site")) {
@@ -35,6 +35,7 @@ BoxTaskProbe::BoxTaskProbe(const mjModel* scene)
     Kind& kind = kind_[static_cast<size_t>(g)];
     if (body == box_body_) kind = Kind::kBox;
     else if (body == 0) kind = Kind::kEnvironment;  // static: table, socket, shelf, floor
+    // (otherwise the robot's base, torso or head)
     else if (in_subtree(scene, body, left_arm)) kind = Kind::kLeftArm;
     else if (in_subtree(scene, body, right_arm)) kind = Kind::kRightArm;
   }
@@ -55,7 +56,10 @@ BoxTaskSample BoxTaskProbe::sample(const mjModel* m, const mjData* d) const {
     if (pair(Kind::kLeftArm, Kind::kBox)) s.left_squeeze_n += force[0];
     if (pair(Kind::kRightArm, Kind::kBox)) s.right_squeeze_n += force[0];
     if (pair(Kind::kEnvironment, Kind::kBox)) s.support_n += force[0];
-    if (pair(Kind::kLeftArm, Kind::kEnvironment) || pair(Kind::kRightArm, Kind::kEnvironment)) s.arm_env_n += force[0];
+    // an arm touching anything but the box: furniture, the robot's own body, the other arm
+    const bool arm_a = a == Kind::kLeftArm || a == Kind::kRightArm;
+    const bool arm_b = b == Kind::kLeftArm || b == Kind::kRightArm;
+    if ((arm_a && b != Kind::kBox) || (arm_b && a != Kind::kBox)) s.arm_collision_n += force[0];
   }
   return s;
 }

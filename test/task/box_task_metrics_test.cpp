@@ -61,7 +61,7 @@ TEST(BoxTaskMetrics, ReportsSuccessAndThePlacingTimeWhenTheBoxEndsRestingInTheSh
   EXPECT_DOUBLE_EQ(m.squeeze_variation_n[0], 0.0);
   EXPECT_DOUBLE_EQ(m.squeeze_min_n[1], 15.0);
   EXPECT_NEAR(m.slip_mm, 0.0, 1e-9);
-  EXPECT_DOUBLE_EQ(m.max_arm_env_n, 0.0);
+  EXPECT_DOUBLE_EQ(m.max_arm_collision_n, 0.0);
 }
 
 TEST(BoxTaskMetrics, TakesTheSqueezeVariationOverTheCarryOnlyWhenTheForceChangesOutsideIt) {
@@ -132,8 +132,8 @@ TEST(BoxTaskMetrics, FailsWhenTheBoxStopsShortOfTheShelfOrStillMoves) {
 
 TEST(BoxTaskMetrics, ReportsTheLargestArmEnvironmentForceWhenAnArmHitsTheShelf) {
   BoxTaskSeries series = ideal_task();
-  series.samples[250].arm_env_n = 12.5;
-  EXPECT_DOUBLE_EQ(evaluate_box_task(series, kShelf).max_arm_env_n, 12.5);
+  series.samples[250].arm_collision_n = 12.5;
+  EXPECT_DOUBLE_EQ(evaluate_box_task(series, kShelf).max_arm_collision_n, 12.5);
 }
 
 TEST(BoxTaskMetrics, GivesNanAndFalseWhenTheTraceIsEmpty) {

@@ -13,7 +13,7 @@ namespace teleop::task {
 /// Column names of a box task trace, in the order of BoxTaskSample's fields.
 inline constexpr std::array<const char*, 14> kBoxTaskColumns = {
     "t_s",    "box_x",  "box_y",  "box_z",          "left_x",          "left_y",    "left_z",
-    "right_x", "right_y", "right_z", "left_squeeze_n", "right_squeeze_n", "support_n", "arm_env_n"};
+    "right_x", "right_y", "right_z", "left_squeeze_n", "right_squeeze_n", "support_n", "arm_collision_n"};
 
 /// One sample of the task (what BoxTaskProbe reads from a simulation).
 struct BoxTaskSample {
@@ -24,7 +24,7 @@ struct BoxTaskSample {
   double left_squeeze_n = 0;   ///< normal contact force between the left arm and the box
   double right_squeeze_n = 0;  ///< the same for the right arm
   double support_n = 0;        ///< normal contact force between the box and the environment
-  double arm_env_n = 0;        ///< normal contact force between the arms and the environment
+  double arm_collision_n = 0;  ///< normal contact force between an arm and anything but the box
 };
 
 /// The trace: samples with ascending times.
@@ -59,7 +59,7 @@ struct BoxTaskMetrics {
   std::array<double, 2> squeeze_min_n{};        ///< per hand: smallest squeeze over the carry
   double slip_mm = 0;       ///< largest box displacement in the hands' midpoint frame, carry
   bool dropped = false;     ///< off its supports without both hands on it for longer than drop_s
-  double max_arm_env_n = 0;  ///< largest arm-environment contact force (collisions)
+  double max_arm_collision_n = 0;  ///< largest arm_collision_n: arms hitting furniture, body or each other
 };
 
 /// Per sample: both hands touch the box (squeeze >= contact_n) and nothing else supports it

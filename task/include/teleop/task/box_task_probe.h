@@ -22,7 +22,7 @@ class BoxTaskProbe {
   BoxTaskSample sample(const mjModel* m, const mjData* d) const;
 
  private:
-  enum class Kind : unsigned char { kOther, kLeftArm, kRightArm, kBox, kEnvironment };
+  enum class Kind : unsigned char { kRobotBody, kLeftArm, kRightArm, kBox, kEnvironment };
 
   std::vector<Kind> kind_;  // per geom
   int box_body_;
