@@ -9,12 +9,38 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-template <typename Field>
-std::vector<double> column(const BoxTaskSeries& series, Field field) {
-  std::vector<double> values;
+/// field(sample) for every sample.
+template <typename T, typename Field>
+std::vector<T> per_sample(const BoxTaskSeries& series, Field&& field) {
+  std::vector<T> values;
   values.reserve(series.samples.size());
   for (const BoxTaskSample& s : series.samples) values.push_back(field(s));
   return values;
+}
+
+/// Calls each_run(first, end) for every run [first, end) of true samples in `mask`.
+template <typename EachRun>
+void for_each_run(const std::vector<bool>& mask, EachRun&& each_run) {
+  size_t k = 0;
+  while (k < mask.size()) {
+    if (!mask[k]) {
+      ++k;
+      continue;
+    }
+    const size_t first = k;
+    while (k < mask.size() && mask[k]) ++k;
+    each_run(first, k);
+  }
+}
+
+/// From the first to the last sample of the run [first, end).
+double run_duration_s(const BoxTaskSeries& series, size_t first, size_t end) {
+  return series.samples[end - 1].t_s - series.samples[first].t_s;
+}
+
+/// Both hands touch the box.
+bool held(const BoxTaskSample& s, double contact_n) {
+  return s.left_squeeze_n >= contact_n && s.right_squeeze_n >= contact_n;
 }
 
 /// Time the samples in `mask` cover (each sample stands for the interval to the next one).
@@ -28,28 +54,33 @@ double masked_duration_s(const BoxTaskSeries& series, const std::vector<bool>& m
 
 }  // namespace
 
-std::vector<bool> carry_mask(const BoxTaskSeries& series, double contact_n) {
-  std::vector<bool> mask;
-  mask.reserve(series.samples.size());
-  for (const BoxTaskSample& s : series.samples) {
-    mask.push_back(s.left_squeeze_n >= contact_n && s.right_squeeze_n >= contact_n && s.support_n < contact_n);
-  }
+std::vector<bool> without_short_runs(const BoxTaskSeries& series, std::vector<bool> mask, double min_s) {
+  for_each_run(mask, [&](size_t first, size_t end) {
+    if (run_duration_s(series, first, end) < min_s) std::fill(mask.begin() + first, mask.begin() + end, false);
+  });
   return mask;
 }
 
+std::vector<bool> unsupported_mask(const BoxTaskSeries& series, const BoxTaskThresholds& thresholds) {
+  const double c = thresholds.contact_n;
+  return without_short_runs(series, per_sample<bool>(series, [c](const BoxTaskSample& s) { return s.support_n < c; }),
+                            thresholds.debounce_s);
+}
+
+std::vector<bool> carry_mask(const BoxTaskSeries& series, const BoxTaskThresholds& thresholds) {
+  const double c = thresholds.contact_n;
+  auto carried = [c](const BoxTaskSample& s) { return held(s, c) && s.support_n < c; };
+  return without_short_runs(series, per_sample<bool>(series, carried), thresholds.debounce_s);
+}
+
 bool dropped(const BoxTaskSeries& series, const BoxTaskThresholds& thresholds) {
-  const double unset = std::numeric_limits<double>::quiet_NaN();
-  double free_since_s = unset;  // start of the current run of unheld, unsupported samples
-  for (const BoxTaskSample& s : series.samples) {
-    const bool held = s.left_squeeze_n >= thresholds.contact_n && s.right_squeeze_n >= thresholds.contact_n;
-    if (held || s.support_n >= thresholds.contact_n) {
-      free_since_s = unset;
-      continue;
-    }
-    if (std::isnan(free_since_s)) free_since_s = s.t_s;
-    if (s.t_s - free_since_s > thresholds.drop_s) return true;
-  }
-  return false;
+  const double c = thresholds.contact_n;
+  const auto free = per_sample<bool>(series, [c](const BoxTaskSample& s) { return !held(s, c) && s.support_n < c; });
+  bool fell = false;
+  for_each_run(free, [&](size_t first, size_t end) {
+    fell = fell || run_duration_s(series, first, end) > thresholds.debounce_s;
+  });
+  return fell;
 }
 
 double variation_over(const std::vector<double>& values, const std::vector<bool>& mask) {
@@ -82,17 +113,18 @@ double slip_mm(const BoxTaskSeries& series, const std::vector<bool>& mask) {
   return 1000.0 * largest;
 }
 
-double placed_time_s(const BoxTaskSeries& series, const BoxRegion& shelf, double contact_n) {
+double placed_time_s(const BoxTaskSeries& series, const BoxRegion& shelf, const BoxTaskThresholds& thresholds) {
+  const std::vector<bool> unsupported = unsupported_mask(series, thresholds);
   double placed = kNaN;
-  for (auto it = series.samples.rbegin(); it != series.samples.rend(); ++it) {
-    if (!shelf.contains(it->box_m) || it->support_n < contact_n) break;
-    placed = it->t_s;
+  for (size_t k = series.samples.size(); k-- > 0;) {
+    if (!shelf.contains(series.samples[k].box_m) || unsupported[k]) break;
+    placed = series.samples[k].t_s;
   }
   return placed;
 }
 
 bool resting_at_end(const BoxTaskSeries& series, const BoxTaskThresholds& thresholds) {
-  if (series.samples.empty() || series.samples.back().support_n < thresholds.contact_n) return false;
+  if (series.samples.empty() || unsupported_mask(series, thresholds).back()) return false;
   const BoxTaskSample& last = series.samples.back();
   for (auto it = series.samples.rbegin(); it != series.samples.rend(); ++it) {
     if ((it->box_m - last.box_m).norm() >= thresholds.rest_motion_m) return false;
@@ -104,10 +136,10 @@ bool resting_at_end(const BoxTaskSeries& series, const BoxTaskThresholds& thresh
 BoxTaskMetrics evaluate_box_task(const BoxTaskSeries& series, const BoxRegion& shelf,
                                  const BoxTaskThresholds& thresholds) {
   BoxTaskMetrics metrics;
-  const std::vector<bool> carry = carry_mask(series, thresholds.contact_n);
+  const std::vector<bool> carry = carry_mask(series, thresholds);
   const std::array<std::vector<double>, 2> squeeze = {
-      column(series, [](const BoxTaskSample& s) { return s.left_squeeze_n; }),
-      column(series, [](const BoxTaskSample& s) { return s.right_squeeze_n; })};
+      per_sample<double>(series, [](const BoxTaskSample& s) { return s.left_squeeze_n; }),
+      per_sample<double>(series, [](const BoxTaskSample& s) { return s.right_squeeze_n; })};
   for (size_t hand = 0; hand < 2; ++hand) {
     metrics.squeeze_variation_n[hand] = variation_over(squeeze[hand], carry);
     metrics.squeeze_min_n[hand] = kNaN;
@@ -121,7 +153,7 @@ BoxTaskMetrics evaluate_box_task(const BoxTaskSeries& series, const BoxRegion& s
   metrics.in_shelf = !series.samples.empty() && shelf.contains(series.samples.back().box_m);
   metrics.resting = resting_at_end(series, thresholds);
   metrics.success = metrics.in_shelf && metrics.resting && !metrics.dropped;
-  const double placed = placed_time_s(series, shelf, thresholds.contact_n);
+  const double placed = placed_time_s(series, shelf, thresholds);
   metrics.task_time_s = series.samples.empty() ? kNaN : placed - series.samples.front().t_s;
   for (const BoxTaskSample& s : series.samples) {
     metrics.max_arm_collision_n = std::max(metrics.max_arm_collision_n, s.arm_collision_n);

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -92,9 +93,25 @@ TEST(BoxPlan, RejectsAnUnknownKeyWhenLoaded) {
   EXPECT_NE(error.find("grip"), std::string::npos) << error;
 }
 
-TEST(HandTrajectories, RegeneratesTheCommittedCsvFilesWhenThePlanIsRun) {
-  const auto trajectories = plan_hand_trajectories(load_box_plan(kPlan));
-  for (const HandTrajectory& hand : trajectories) {
+/// The committed plan's trajectories, planned once for all tests (slow under the sanitizers).
+class HandTrajectories : public testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    plan_ = new BoxPlan(load_box_plan(kPlan));
+    trajectories_ = new std::array<HandTrajectory, 2>(plan_hand_trajectories(*plan_));
+  }
+  static void TearDownTestSuite() {
+    delete trajectories_;
+    delete plan_;
+  }
+  static BoxPlan* plan_;
+  static std::array<HandTrajectory, 2>* trajectories_;
+};
+BoxPlan* HandTrajectories::plan_ = nullptr;
+std::array<HandTrajectory, 2>* HandTrajectories::trajectories_ = nullptr;
+
+TEST_F(HandTrajectories, RegeneratesTheCommittedCsvFilesWhenThePlanIsRun) {
+  for (const HandTrajectory& hand : *trajectories_) {
     SCOPED_TRACE(side_name(hand.side));
     const std::string fresh = (std::filesystem::temp_directory_path() /
                                ("teleop_box_task_" + std::string(side_name(hand.side)) + ".csv"))
@@ -112,10 +129,9 @@ TEST(HandTrajectories, RegeneratesTheCommittedCsvFilesWhenThePlanIsRun) {
   }
 }
 
-TEST(HandTrajectories, ReachesEveryWaypointFacingTheBoxInsideTheJointLimitsWhenPlanned) {
-  const BoxPlan plan = load_box_plan(kPlan);
-  const auto trajectories = plan_hand_trajectories(plan);
-  for (const HandTrajectory& hand : trajectories) {
+TEST_F(HandTrajectories, ReachesEveryWaypointFacingTheBoxInsideTheJointLimitsWhenPlanned) {
+  const BoxPlan& plan = *plan_;
+  for (const HandTrajectory& hand : *trajectories_) {
     SCOPED_TRACE(side_name(hand.side));
     EXPECT_LT(hand.worst.position_m, 1e-3);
     EXPECT_LT(hand.worst.rotation_rad, 1e-3);

@@ -110,6 +110,30 @@ TEST(BoxTaskMetrics, IgnoresASingleUnsupportedSampleWhenTheBoxSettlesAtTheStart)
   EXPECT_FALSE(dropped(series, {}));
 }
 
+TEST(BoxTaskMetrics, IgnoresAOneSampleSupportFlickerWhenTheHandsReleaseThePlacedBox) {
+  BoxTaskSeries series = ideal_task();
+  for (BoxTaskSample& s : series.samples) {
+    if (s.t_s >= 3.0 && s.t_s < 3.2) s.left_squeeze_n = s.right_squeeze_n = 5;  // still touching
+  }
+  series.samples[310].support_n = 0;  // the box lifts off the floor for one sample at 3.1 s
+  const BoxTaskMetrics m = evaluate_box_task(series, kShelf);
+  EXPECT_NEAR(m.task_time_s, 3.0, 1e-9);
+  EXPECT_DOUBLE_EQ(m.squeeze_min_n[0], 15.0);  // the flicker is not part of the carry
+  EXPECT_NEAR(m.carry_time_s, 2.0, 1e-9);
+  EXPECT_TRUE(m.success);
+}
+
+TEST(BoxTaskMetrics, CountsAHeldRunLongerThanTheDebounceAsCarry) {
+  BoxTaskSeries series = ideal_task();
+  for (size_t k = 310; k < 315; ++k) {  // 40 ms lifted off the floor again, held at 5 N
+    series.samples[k].support_n = 0;
+    series.samples[k].left_squeeze_n = series.samples[k].right_squeeze_n = 5;
+  }
+  const BoxTaskMetrics m = evaluate_box_task(series, kShelf);
+  EXPECT_DOUBLE_EQ(m.squeeze_min_n[0], 5.0);
+  EXPECT_NEAR(m.task_time_s, 3.15, 1e-9);
+}
+
 TEST(BoxTaskMetrics, FailsWhenTheBoxStopsShortOfTheShelfOrStillMoves) {
   BoxTaskSeries short_of_it = ideal_task();
   for (BoxTaskSample& s : short_of_it.samples) {
@@ -130,7 +154,7 @@ TEST(BoxTaskMetrics, FailsWhenTheBoxStopsShortOfTheShelfOrStillMoves) {
   EXPECT_FALSE(moving.success);
 }
 
-TEST(BoxTaskMetrics, ReportsTheLargestArmEnvironmentForceWhenAnArmHitsTheShelf) {
+TEST(BoxTaskMetrics, ReportsTheLargestArmCollisionForceWhenAnArmHitsTheShelf) {
   BoxTaskSeries series = ideal_task();
   series.samples[250].arm_collision_n = 12.5;
   EXPECT_DOUBLE_EQ(evaluate_box_task(series, kShelf).max_arm_collision_n, 12.5);

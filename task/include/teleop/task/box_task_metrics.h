@@ -44,7 +44,7 @@ struct BoxRegion {
 
 struct BoxTaskThresholds {
   double contact_n = 0.5;        ///< a contact force at least this large counts as touching
-  double drop_s = 0.02;          ///< off its supports and not held for longer than this: dropped
+  double debounce_s = 0.02;      ///< contact changes shorter than this are ignored (a flicker)
   double rest_window_s = 0.5;    ///< the box rests when it moved less than rest_motion_m in this window
   double rest_motion_m = 0.002;  ///< at the end of the trace
 };
@@ -58,16 +58,23 @@ struct BoxTaskMetrics {
   std::array<double, 2> squeeze_variation_n{};  ///< per hand (left, right): max - min over the carry
   std::array<double, 2> squeeze_min_n{};        ///< per hand: smallest squeeze over the carry
   double slip_mm = 0;       ///< largest box displacement in the hands' midpoint frame, carry
-  bool dropped = false;     ///< off its supports without both hands on it for longer than drop_s
+  bool dropped = false;     ///< off its supports without both hands on it for longer than debounce_s
   double max_arm_collision_n = 0;  ///< largest arm_collision_n: arms hitting furniture, body or each other
 };
 
+/// `mask` with every run of true samples that lasts less than `min_s` (first to last sample
+/// time) turned false.
+std::vector<bool> without_short_runs(const BoxTaskSeries& series, std::vector<bool> mask, double min_s);
+
+/// Per sample: nothing supports the box (support_n < contact_n) for at least debounce_s.
+std::vector<bool> unsupported_mask(const BoxTaskSeries& series, const BoxTaskThresholds& thresholds);
+
 /// Per sample: both hands touch the box (squeeze >= contact_n) and nothing else supports it
-/// (support_n < contact_n): the carry phase.
-std::vector<bool> carry_mask(const BoxTaskSeries& series, double contact_n);
+/// (support_n < contact_n), for at least debounce_s: the carry phase.
+std::vector<bool> carry_mask(const BoxTaskSeries& series, const BoxTaskThresholds& thresholds);
 
 /// Whether the box was ever off its supports without being held by both hands for longer than
-/// drop_s (a fall; a single sample, e.g. a box settling into its first contact, is not one).
+/// debounce_s (a fall; a single sample, e.g. a box settling into its first contact, is not one).
 bool dropped(const BoxTaskSeries& series, const BoxTaskThresholds& thresholds);
 
 /// Largest minus smallest of `values` over the samples in `mask`; NaN when there are none.
@@ -81,9 +88,9 @@ Eigen::Vector3d box_in_hand_frame(const BoxTaskSample& sample);
 /// them; NaN when there are none.
 double slip_mm(const BoxTaskSeries& series, const std::vector<bool>& mask);
 
-/// First time from which on, to the end, the box centre is in `shelf` and supported; NaN when
-/// the trace does not end so.
-double placed_time_s(const BoxTaskSeries& series, const BoxRegion& shelf, double contact_n);
+/// First time from which on, to the end, the box centre is in `shelf` and supported (support
+/// losses shorter than debounce_s ignored); NaN when the trace does not end so.
+double placed_time_s(const BoxTaskSeries& series, const BoxRegion& shelf, const BoxTaskThresholds& thresholds);
 
 /// Whether the box moved less than rest_motion_m over the last rest_window_s and is supported.
 bool resting_at_end(const BoxTaskSeries& series, const BoxTaskThresholds& thresholds);

@@ -14,7 +14,7 @@ namespace teleop::task {
 struct IkSettings {
   double damping = 0.02;           ///< lambda of (J J^T + lambda^2 I)^-1
   double nullspace_gain = 0.2;     ///< fraction of (q_rest - q) taken per iteration, in the nullspace
-  int iterations = 60;             ///< fixed, so the result is reproducible
+  int iterations = 10;             ///< fixed, so the result is reproducible
   double limit_margin_rad = 0.05;  ///< joints are held this far inside their ranges
 };
 
