@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ostream>
 #include <string>
 
 #include "teleop/control/controllers.h"
@@ -102,6 +103,8 @@ struct GainCase {
   double stiffness;
   double damping;
 };
+
+void PrintTo(const GainCase& gains, std::ostream* os) { *os << "K " << gains.stiffness << " D " << gains.damping; }
 
 class BoxTaskFeasibility : public testing::TestWithParam<GainCase> {};
 
