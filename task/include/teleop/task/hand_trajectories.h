@@ -1,0 +1,33 @@
+#pragma once
+// The plan turned into what the simulated operator pulls each haptic device along: one joint
+// trajectory per hand, sampled at the plan's rate, solved by HandIk on left_arm.xml / right_arm.xml,
+// written as the CSV the leader's `recorded` operator motion reads (t_s, q_0..q_6).
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "teleop/task/box_plan.h"
+#include "teleop/task/hand_ik.h"
+
+namespace teleop::task {
+
+struct HandTrajectory {
+  Side side = Side::kLeft;
+  std::vector<double> t_s;                  ///< 0, 1/rate, ... up to the last waypoint
+  std::vector<control::JointVector> q_rad;  ///< one row per time
+  IkError worst;                            ///< largest pose error left by the IK, over the rows
+  double min_limit_distance_rad = 0;        ///< closest any joint came to its range's end
+};
+
+/// Both hands' flange poses along the plan: from the "home" keyframe pose at t = 0 straight to
+/// each waypoint in turn, minimum-jerk in time; the flange keeps facing the box (its z axis along
+/// -y for the left hand, +y for the right), turned there from "home" during the first segment.
+/// Throws (naming the model file) when a model or its keyframe cannot be loaded.
+std::array<HandTrajectory, 2> plan_hand_trajectories(const BoxPlan& plan, const IkSettings& settings = {});
+
+/// Writes `t_s,q_0..q_6` rows (12 decimals). Throws std::runtime_error naming `path` when it
+/// cannot be written.
+void write_trajectory_csv(const HandTrajectory& trajectory, const std::string& path);
+
+}  // namespace teleop::task
