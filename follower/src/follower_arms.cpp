@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "teleop/common/joint_config.h"
+#include "teleop/follower/box_task_trace.h"
 #include "teleop/follower/follower_node.h"
 #include "teleop/follower/mujoco_hardware.h"
 #include "teleop/runtime/arm_group.h"
@@ -36,6 +37,7 @@ std::unique_ptr<runtime::NodeLogic> build_arms(const std::vector<FollowerConfig>
   for (const FollowerConfig& arm : arms) {
     group.push_back({arm.arm, std::make_unique<FollowerNode>(arm, std::make_unique<MujocoHardware>(scene, arm.mujoco), context)});
   }
+  if (arms.front().trace_box_task) group.push_back({"", std::make_unique<BoxTaskTrace>(scene)});
   // each arm wrote its torques in its cycle: now the world they share moves on
   return std::make_unique<runtime::ArmGroup>(std::move(group), [scene] { scene->step(); });
 }

@@ -94,6 +94,8 @@ FollowerConfig parse_follower_config(const ConfigNode& root) {
   c.hold_stiffness_nm_per_rad = s.get_double("hold_stiffness_nm_per_rad", Range{0, 1e5}, c.hold_stiffness_nm_per_rad);
   c.hold_damping_nms_per_rad = s.get_double("hold_damping_nms_per_rad", Range{0, 1e4}, c.hold_damping_nms_per_rad);
   c.control = read_control(s.child("control"), c.joints, s.has("arms"));
+  c.trace_box_task = s.get_bool("trace_box_task", false);
+  if (c.trace_box_task && !s.has("arms")) throw s.error("trace_box_task", "needs the two arms of follower.arms");
   return c;
 }
 

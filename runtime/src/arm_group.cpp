@@ -56,7 +56,9 @@ void ArmGroup::fill_report(NodeReport& report) const {
     a.logic->fill_report(part);
     report.published.insert(report.published.end(), part.published.begin(), part.published.end());
     report.received.insert(report.received.end(), part.received.begin(), part.received.end());
-    for (const auto& [name, value] : part.counters) report.counters.emplace_back(a.name + "." + name, value);
+    for (const auto& [name, value] : part.counters) {
+      report.counters.emplace_back(a.name.empty() ? name : a.name + "." + name, value);
+    }
   }
 }
 
@@ -64,7 +66,7 @@ void ArmGroup::trace_columns(std::vector<std::string>& columns) const {
   for (const Arm& a : arms_) {
     std::vector<std::string> own;
     a.logic->trace_columns(own);
-    for (const std::string& c : own) columns.push_back(a.name + "_" + c);
+    for (const std::string& c : own) columns.push_back(a.name.empty() ? c : a.name + "_" + c);
   }
 }
 

@@ -60,6 +60,11 @@ TEST(TwoArmProcesses, EachHandMovesOnlyItsOwnArm) {
   EXPECT_NEAR(last(trace.column("right_q_4")), kRightHome[4] + 0.3, 0.03);
   EXPECT_NEAR(last(trace.column("right_q_6")), kRightHome[6], 0.03);
 
+  // the box task's columns (follower.trace_box_task): the box stays in its socket, on its supports
+  EXPECT_NEAR(last(trace.column("box_z")), 0.80, 0.005);
+  EXPECT_NEAR(last(trace.column("support_n")), 9.81, 0.5) << "1 kg resting on the table";
+  EXPECT_EQ(last(trace.column("left_squeeze_n")), 0.0);
+
   const auto report = runtime::read_report(dir + "/follower.yaml");
   auto published = [&](const std::string& topic) {
     for (const auto& p : report.published) {

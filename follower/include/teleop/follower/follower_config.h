@@ -32,6 +32,8 @@ struct FollowerConfig {
   double hold_stiffness_nm_per_rad = 200.0;
   double hold_damping_nms_per_rad = 20.0;
   ArmControlConfig control;
+  /// A two-arm follower on the box scene traces the box task's quantities (box_task_trace.h).
+  bool trace_box_task = false;
   /// The architecture the follower plays its part in (absent: a plain follower of `command_source`).
   std::optional<teleoperation::TeleoperationConfig> teleoperation;
 };

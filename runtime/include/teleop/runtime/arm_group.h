@@ -17,6 +17,8 @@ namespace teleop::runtime {
 class ArmGroup final : public NodeLogic {
  public:
   struct Arm {
+    /// "" for a member that is no arm (an observer of the shared scene): its columns and
+    /// counters keep their own names.
     std::string name;
     std::unique_ptr<NodeLogic> logic;
   };
@@ -28,9 +30,9 @@ class ArmGroup final : public NodeLogic {
   /// The worst state of any arm: fault, then safe hold, starting, stopping, running.
   msg::NodeState state() const override;
   void active_faults(std::vector<uint32_t>& faults) const override;
-  /// Every arm's topics; its counters as "<arm>.<counter>".
+  /// Every arm's topics; its counters as "<arm>.<counter>" (unnamed members: as they are).
   void fill_report(NodeReport& report) const override;
-  /// Every arm's columns as "<arm>_<column>".
+  /// Every arm's columns as "<arm>_<column>" (unnamed members: as they are).
   void trace_columns(std::vector<std::string>& columns) const override;
   void trace_row(double* row) const override;
 

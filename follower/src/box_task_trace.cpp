@@ -1,0 +1,24 @@
+#include "teleop/follower/box_task_trace.h"
+
+namespace teleop::follower {
+
+BoxTaskTrace::BoxTaskTrace(std::shared_ptr<const MujocoScene> scene)
+    : scene_(std::move(scene)), probe_(scene_->simulation().model()) {}
+
+void BoxTaskTrace::trace_columns(std::vector<std::string>& columns) const {
+  // t_s is the trace's own first column
+  for (size_t i = 1; i < task::kBoxTaskColumns.size(); ++i) columns.emplace_back(task::kBoxTaskColumns[i]);
+}
+
+void BoxTaskTrace::trace_row(double* row) const {
+  const task::BoxTaskSample s = probe_.sample(scene_->simulation().model(), scene_->simulation().data());
+  for (const Eigen::Vector3d* p : {&s.box_m, &s.left_m, &s.right_m}) {
+    for (int k = 0; k < 3; ++k) *row++ = (*p)[k];
+  }
+  *row++ = s.left_squeeze_n;
+  *row++ = s.right_squeeze_n;
+  *row++ = s.support_n;
+  *row = s.arm_collision_n;
+}
+
+}  // namespace teleop::follower
