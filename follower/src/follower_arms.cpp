@@ -6,12 +6,11 @@
 #include "teleop/follower/box_task_trace.h"
 #include "teleop/follower/follower_node.h"
 #include "teleop/follower/mujoco_hardware.h"
+#include "teleop/runtime/arm_configs.h"
 #include "teleop/runtime/arm_group.h"
 
 namespace teleop::follower {
 namespace {
-
-constexpr Range kAngle{-2 * M_PI, 2 * M_PI};
 
 // an arm's own keys on top of the shared `follower:` section
 FollowerConfig arm_config(const FollowerConfig& shared, const std::string& name, const ConfigNode& a) {
@@ -22,7 +21,7 @@ FollowerConfig arm_config(const FollowerConfig& shared, const std::string& name,
   c.control.model_path = a.get_path("control_model");
   c.control.ee_site = c.mujoco.ee_site;
   if (a.has("rest_posture_rad")) {
-    const JointVector rest = read_joint_list(a, "rest_posture_rad", c.joints, kAngle, 0.0);
+    const JointVector rest = read_joint_list(a, "rest_posture_rad", c.joints, kJointAngleRange, 0.0);
     c.control.rest_posture_rad = Eigen::Map<const control::JointVector>(rest.data());
   }
   return c;
@@ -45,21 +44,9 @@ std::unique_ptr<runtime::NodeLogic> build_arms(const std::vector<FollowerConfig>
 }  // namespace
 
 std::vector<FollowerConfig> parse_follower_arms(const ConfigNode& root) {
-  const FollowerConfig shared = parse_follower_config(root);
-  const ConfigNode s = root.child("follower");
-  const auto arms = s.optional_child("arms");
-  if (!arms) return {shared};
-  std::vector<FollowerConfig> configs;
-  for (const std::string& name : arms->keys()) configs.push_back(arm_config(shared, name, arms->child(name)));
-  if (configs.empty()) throw s.error("arms", "names no arm");
-  return configs;
+  return runtime::read_arm_configs(root.child("follower"), parse_follower_config(root), arm_config);
 }
 
-runtime::LogicParser follower_logic_parser() {
-  return [](const ConfigNode& root) -> runtime::LogicBuilder {
-    auto arms = parse_follower_arms(root);
-    return [arms](runtime::NodeContext& context) { return build_arms(arms, context); };
-  };
-}
+runtime::LogicParser follower_logic_parser() { return runtime::arm_logic_parser(parse_follower_arms, build_arms); }
 
 }  // namespace teleop::follower

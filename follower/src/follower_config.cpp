@@ -8,13 +8,11 @@
 namespace teleop::follower {
 namespace {
 
-constexpr Range kAngle{-2 * M_PI, 2 * M_PI};
-
 control::JointVector to_eigen(const JointVector& v) { return Eigen::Map<const control::JointVector>(v.data()); }
 
 void read_joint_limits(const ConfigNode& s, size_t n, JointLimits& l) {
-  l.q_min_rad = read_joint_list(s, "q_min_rad", n, kAngle, -2.8);
-  l.q_max_rad = read_joint_list(s, "q_max_rad", n, kAngle, 2.8);
+  l.q_min_rad = read_joint_list(s, "q_min_rad", n, kJointAngleRange, -2.8);
+  l.q_max_rad = read_joint_list(s, "q_max_rad", n, kJointAngleRange, 2.8);
   for (size_t i = 0; i < n; ++i) {
     if (l.q_min_rad[i] >= l.q_max_rad[i]) throw s.error("q_max_rad", "must exceed q_min_rad for every joint");
   }
@@ -49,7 +47,7 @@ ArmControlConfig read_control(const ConfigNode& c, size_t n, bool per_arm) {
   a.position_pd.kp = to_eigen(read_joint_list(c, "position_pd_kp", n, Range{0, 1e5}, 600.0));
   a.position_pd.kd = to_eigen(read_joint_list(c, "position_pd_kd", n, Range{0, 1e4}, 30.0));
   a.nullspace_damping = to_eigen(read_joint_list(c, "nullspace_damping_nms_per_rad", n, Range{0, 1e3}, 2.0));
-  a.rest_posture_rad = to_eigen(read_joint_list(c, "rest_posture_rad", n, kAngle, 0.0));
+  a.rest_posture_rad = to_eigen(read_joint_list(c, "rest_posture_rad", n, kJointAngleRange, 0.0));
   a.blend_s = c.get_double("blend_ms", Range{0, 5000}, a.blend_s * 1e3) * 1e-3;
   a.observer_gain_per_s = c.get_double("observer_gain_per_s", Range{1, 1000}, a.observer_gain_per_s);
   const std::string source =

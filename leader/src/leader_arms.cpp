@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "teleop/common/joint_config.h"
+#include "teleop/runtime/arm_configs.h"
 #include "teleop/runtime/arm_group.h"
 
 namespace teleop::leader {
@@ -16,7 +17,7 @@ LeaderConfig arm_config(const LeaderConfig& shared, const std::string& name, con
   c.arm_model = a.get_path("model");
   c.haptic_arm.model.model_path = c.arm_model;
   c.ee_site = a.get_string("ee_site");
-  c.home_rad = read_joint_list(a, "home_rad", c.joints, Range{-2 * M_PI, 2 * M_PI}, 0.0);
+  c.home_rad = read_joint_list(a, "home_rad", c.joints, kJointAngleRange, 0.0);
   c.motion.home_rad = c.home_rad;
   if (c.motion.kind == OperatorMotionConfig::Kind::kRecorded) {
     c.motion.recording = load_recording(a, "recording", c.motion);
@@ -36,21 +37,9 @@ std::unique_ptr<runtime::NodeLogic> build_arms(const std::vector<LeaderConfig>& 
 }  // namespace
 
 std::vector<LeaderConfig> parse_leader_arms(const ConfigNode& root) {
-  const LeaderConfig shared = LeaderNode::parse_config(root);
-  const ConfigNode s = root.child("leader");
-  const auto arms = s.optional_child("arms");
-  if (!arms) return {shared};
-  std::vector<LeaderConfig> configs;
-  for (const std::string& name : arms->keys()) configs.push_back(arm_config(shared, name, arms->child(name)));
-  if (configs.empty()) throw s.error("arms", "names no hand");
-  return configs;
+  return runtime::read_arm_configs(root.child("leader"), LeaderNode::parse_config(root), arm_config);
 }
 
-runtime::LogicParser leader_logic_parser() {
-  return [](const ConfigNode& root) -> runtime::LogicBuilder {
-    auto arms = parse_leader_arms(root);
-    return [arms](runtime::NodeContext& context) { return build_arms(arms, context); };
-  };
-}
+runtime::LogicParser leader_logic_parser() { return runtime::arm_logic_parser(parse_leader_arms, build_arms); }
 
 }  // namespace teleop::leader

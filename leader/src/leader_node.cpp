@@ -72,7 +72,7 @@ LeaderConfig LeaderNode::parse_config(const ConfigNode& root) {
   const ConfigNode s = root.child("leader");
   LeaderConfig c;
   c.joints = read_joint_count(s);
-  c.home_rad = read_joint_list(s, "home_rad", c.joints, Range{-2 * M_PI, 2 * M_PI}, 0.0);
+  c.home_rad = read_joint_list(s, "home_rad", c.joints, kJointAngleRange, 0.0);
   c.motion = parse_motion(s, c.joints, c.home_rad);
   c.stiffness_nm_per_rad = s.get_double("stiffness_nm_per_rad", Range{0, 1e5}, c.stiffness_nm_per_rad);
   c.damping_nms_per_rad = s.get_double("damping_nms_per_rad", Range{0, 1e4}, c.damping_nms_per_rad);

@@ -18,7 +18,7 @@ LockstepConfig read_lockstep(const ConfigNode& s) {
 
 HilConfig read_hil(const ConfigNode& s) {
   HilConfig c;
-  const std::vector<double> goal = s.get_double_list("goal_rad", Range{-2 * M_PI, 2 * M_PI});
+  const std::vector<double> goal = s.get_double_list("goal_rad", kJointAngleRange);
   if (goal.empty() || goal.size() > kMaxJoints) throw s.error("goal_rad", "expected one angle per driven joint");
   std::copy(goal.begin(), goal.end(), c.goal_rad.begin());
   c.goal_joints = goal.size();

@@ -2,12 +2,16 @@
 // Reading per-joint lists and 3-vectors from configuration.
 
 #include <array>
+#include <cmath>
 #include <string>
 
 #include "teleop/common/config.h"
 #include "teleop/common/joint_model.h"
 
 namespace teleop {
+
+/// Joint angles in configuration [rad]: at most one turn either way.
+inline constexpr Range kJointAngleRange{-2 * M_PI, 2 * M_PI};
 
 /// Reads `key` as a list of exactly `joints` numbers within `range`; every joint gets
 /// `fallback` when the key is absent. Throws ConfigError naming the key otherwise.
