@@ -102,10 +102,16 @@ void FollowerNode::take_commands(int64_t now_ns) {
   }
 }
 
-bool FollowerNode::source_lost() const {
-  // a writer whose liveliness lapsed since its last command: dead or cut off, do not wait for the timeout
+bool FollowerNode::source_lost(double silence_s) const {
   const auto lapsed = [&](const auto& subscription) {
-    return subscription.reader().liveliness_lost() > liveliness_lost_at_command_ && subscription.reader().alive_writers() == 0;
+    const auto& reader = subscription.reader();
+    if (reader.alive_writers() != 0) return false;
+    // a writer whose liveliness lapsed since its last command: dead or cut off, do not wait for the timeout
+    if (reader.liveliness_lost() > liveliness_lost_at_command_) return true;
+    // Fast DDS renews automatic liveliness only with the writer participant's liveliness messages, not with its data: a
+    // lapse reported while commands still came (a starved leader) leaves the writer "not alive" until the next such
+    // message. Silent for a whole lease on top of that, it is as gone as one whose lapse came after its last command.
+    return silence_s * 1e9 > static_cast<double>(reader.liveliness_lease_ns());
   };
   switch (source_) {
     case Source::kJoint: return lapsed(joint_commands_);
@@ -118,8 +124,8 @@ bool FollowerNode::source_lost() const {
 void FollowerNode::run_watchdog(int64_t now_ns) {
   // a hardware fault is not cleared by commands arriving: it needs an operator
   if (state_ == msg::STATE_FAULT) return;
-  const bool lost = source_lost();
   const double silence_s = static_cast<double>(now_ns - last_valid_command_ns_) * 1e-9;
+  const bool lost = source_lost(silence_s);
   if (source_ != Source::kNone && silence_s < config_.command_timeout_s && !lost) {
     state_ = msg::STATE_RUNNING;
     return;

@@ -180,7 +180,7 @@ TEST(FollowerProcess, HoldsWhenTheLeadersLivelinessLapsesBeforeTheCommandTimeout
   ASSERT_EQ(follower.stop(SIGTERM, std::chrono::seconds(10)), 0) << follower.output();
 
   const auto report = runtime::read_report(pair.dir + "/follower.yaml");
-  EXPECT_EQ(report.final_state, "safe_hold");
+  EXPECT_EQ(report.final_state, "safe_hold") << read_file(pair.dir + "/follower.yaml") << follower.output();
   EXPECT_EQ(counter(report, "liveliness_trips"), 1.0);
   const double latency_ms = counter(report, "watchdog_latency_max_ms");
   RecordProperty("liveliness_hold_latency_ms", std::to_string(latency_ms));

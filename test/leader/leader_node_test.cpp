@@ -131,10 +131,9 @@ class FeedbackFadeTest : public ::testing::Test {
   test::NodeHarness harness{"leader"};
   LeaderNode node{haptic_config(), harness.context};
   FollowerPeer follower{harness.peer};
-  transport::Subscription<msg::JointState> device{harness.peer, transport::topics::kLeaderState};
 
   void SetUp() override {
-    ASSERT_TRUE(test::eventually([&] { return follower.state.matched() > 0 && device.reader().matched() > 0; }));
+    ASSERT_TRUE(test::eventually([&] { return follower.state.matched() > 0; }));
   }
   // one cycle; returns the torque the device rendered on joint 1
   double step(bool follower_alive) {
@@ -145,13 +144,9 @@ class FeedbackFadeTest : public ::testing::Test {
     node.cycle(harness.tick());
     return rendered();
   }
-  double rendered() {
-    EXPECT_TRUE(test::eventually([&] {
-      device.poll();
-      return device.has_sample() && device.latest().header().seq() == harness.index;
-    }));
-    return device.latest().tau_measured_nm()[1];
-  }
+  // what the device rendered this cycle, read from the node: the device's state goes out best-effort, and a
+  // sample lost under load would leave a cycle unmeasured
+  double rendered() const { return node.rendered_torque()[1]; }
 };
 
 TEST_F(FeedbackFadeTest, FadesTheFeedbackToZeroWithoutAStepWhenTheFollowerDiesInContact) {

@@ -111,7 +111,7 @@ TEST_F(TwinNodeTest, StopsRenderingWhenTheLeaderGoesSilent) {
   EXPECT_EQ(faults, std::vector<uint32_t>{msg::FAULT_PEER_LOST});
   ASSERT_TRUE(teleop::test::eventually([&] {
     leader.feedback.poll();
-    return leader.feedback.latest().tau_nm()[kShoulder] == 0.0;
+    return leader.feedback.has_sample() && leader.feedback.latest().tau_nm()[kShoulder] == 0.0;
   }));
 }
 

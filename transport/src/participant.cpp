@@ -48,7 +48,8 @@ struct Participant::ReaderListener : dds::DataReaderListener {
     status.matched.store(s.current_count, std::memory_order_relaxed);
   }
   void on_liveliness_changed(dds::DataReader*, const dds::LivelinessChangedStatus& s) override {
-    status.alive.store(s.alive_count, std::memory_order_relaxed);
+    // Fast DDS 2.9 can report a writer's lapse without having reported it alive (seen under CPU load: alive_count -1)
+    status.alive.store(std::max(s.alive_count, 0), std::memory_order_relaxed);
     if (s.not_alive_count_change > 0) {
       status.liveliness_lost.fetch_add(static_cast<uint64_t>(s.not_alive_count_change), std::memory_order_relaxed);
     }

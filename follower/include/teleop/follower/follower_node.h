@@ -46,7 +46,7 @@ class FollowerNode final : public runtime::NodeLogic {
  private:
   void take_commands(int64_t now_ns);
   void run_watchdog(int64_t now_ns);
-  bool source_lost() const;
+  bool source_lost(double silence_s) const;
   void hold_current_pose();
   void apply_passivity();
   void command_torque(const ValidCommand& command);

@@ -47,6 +47,11 @@ class Reader {
   int32_t alive_writers() const { return status_->alive.load(std::memory_order_relaxed); }
   uint64_t liveliness_lost() const { return status_->liveliness_lost.load(std::memory_order_relaxed); }
   uint64_t deadline_missed() const { return status_->deadline_missed.load(std::memory_order_relaxed); }
+  /// The liveliness lease this reader requests of its writers.
+  int64_t liveliness_lease_ns() const {
+    const auto& lease = reader_->get_qos().liveliness().lease_duration;
+    return static_cast<int64_t>(lease.seconds) * 1'000'000'000 + static_cast<int64_t>(lease.nanosec);
+  }
   bool valid() const { return reader_ != nullptr; }
 
  private:
