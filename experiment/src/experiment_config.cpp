@@ -5,12 +5,29 @@
 #include "teleop/common/config.h"
 #include "teleop/launcher/launcher.h"
 #include "teleop/launcher/scenario.h"
+#include "teleop/sim/mujoco_model.h"
+#include "teleop/task/box_task_probe.h"
 
 namespace teleop::experiment {
 namespace {
 
+// the box task's arms and the shelf region its box must end in
+void parse_box_task(const ConfigNode& a, AnalysisConfig& c) {
+  c.arms = a.get_string_list("arms");
+  if (c.arms.empty()) throw a.error("arms", "the box task needs the arms whose columns the traces prefix, e.g. [left, right]");
+  const std::string scene = a.get_path("scene");
+  try {
+    c.shelf = task::shelf_region(sim::MujocoModel::load(scene).model());
+  } catch (const std::exception& e) {
+    throw a.error("scene", e.what());
+  }
+}
+
 AnalysisConfig parse_analysis(const ConfigNode& a) {
   AnalysisConfig c;
+  const bool box_task = a.get_choice("task", {"stiff_wall", "box_task"}, "stiff_wall") == "box_task";
+  c.kind = box_task ? AnalysedTask::kBoxTask : AnalysedTask::kStiffWall;
+  if (box_task) parse_box_task(a, c);
   c.leader = a.get_string("leader", c.leader);
   c.follower = a.get_string("follower", c.follower);
   if (c.leader == c.follower) throw a.error("follower", "must name another node than analysis.leader");

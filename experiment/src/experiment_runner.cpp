@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "teleop/common/config.h"
+#include "teleop/experiment/box_task_analysis.h"
 #include "teleop/experiment/results_table.h"
 #include "teleop/launcher/launcher.h"
 #include "teleop/runtime/shutdown_signal.h"
@@ -97,11 +98,16 @@ void write_text(const std::string& path, const std::string& text) {
 
 RunRow analyse_run(const std::string& run, const std::string& profile, const std::string& trace_dir, bool launched_ok,
                    const AnalysisConfig& analysis) {
-  RunRow row{run, profile, launched_ok ? "ok" : "failed", "", trace_dir, {}, {}};
+  RunRow row{run, profile, launched_ok ? "ok" : "failed", "", trace_dir, {}, {}, {}};
   try {
     const Trace leader = read_trace((fs::path(trace_dir) / (analysis.leader + ".csv")).string());
     const Trace follower = read_trace((fs::path(trace_dir) / (analysis.follower + ".csv")).string());
-    row.metrics = analyse(leader, follower, analysis);
+    if (analysis.kind == AnalysedTask::kBoxTask) {
+      row.metrics = analyse_arms(leader, follower, analysis);
+      row.box_task = task::evaluate_box_task(box_task_series(follower), analysis.shelf);
+    } else {
+      row.metrics = analyse(leader, follower, analysis);
+    }
     row.verdict = judge_stability(row.metrics, analysis);
   } catch (const TraceError& e) {
     if (launched_ok) row.status = "error";
@@ -153,7 +159,7 @@ ExperimentResult run_experiment(const ExperimentConfig& config, const Experiment
     std::printf("[experiment] interrupted after %zu of %zu runs\n", result.rows.size(), total);
     result.failures += static_cast<int>(total - result.rows.size());
   }
-  write_text(result.csv_path, format_csv(result.rows));
+  write_text(result.csv_path, format_csv(result.rows, config.analysis.kind));
   return result;
 }
 

@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
       using namespace teleop::experiment;
       const ExperimentConfig config = load_experiment(experiment_path);
       const ExperimentResult result = run_experiment(config, experiment_options);
-      std::printf("%s", format_table(result.rows, config.name).c_str());
+      std::printf("%s", format_table(result.rows, config.name, config.analysis.kind).c_str());
       std::printf("\nresults: %s\ntraces and reports: %s\n", result.csv_path.c_str(), result.report_dir.c_str());
       if (result.failures > 0)
         std::printf("RESULT: FAILED (%d runs failed or could not be analysed, see above)\n", result.failures);

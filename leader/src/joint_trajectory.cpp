@@ -106,8 +106,10 @@ JointTrajectory JointTrajectory::load_csv(const std::string& path, size_t joints
   const std::string dq_prefix = "d" + q_prefix;
   const bool has_velocities = header.has(dq_prefix + "0");
   const std::vector<size_t> dq_columns = has_velocities ? header.indices(dq_prefix, joints) : std::vector<size_t>{};
+  const bool has_torques = header.has(std::string(kOperatorTorquePrefix) + "0");
+  const std::vector<size_t> tau_columns = has_torques ? header.indices(kOperatorTorquePrefix, joints) : std::vector<size_t>{};
 
-  std::vector<double> t_s, q, dq;
+  std::vector<double> t_s, q, dq, tau;
   size_t line = 1;
   for (; std::getline(in, text); ++line) {
     if (trimmed(text).empty()) continue;
@@ -123,6 +125,8 @@ JointTrajectory JointTrajectory::load_csv(const std::string& path, size_t joints
     for (size_t j = 0; j < joints; ++j) q.push_back(row.number(q_columns[j], q_prefix + std::to_string(j)));
     for (size_t j = 0; j < dq_columns.size(); ++j)
       dq.push_back(row.number(dq_columns[j], dq_prefix + std::to_string(j)));
+    for (size_t j = 0; j < tau_columns.size(); ++j)
+      tau.push_back(row.number(tau_columns[j], kOperatorTorquePrefix + std::to_string(j)));
   }
   if (t_s.size() < 2)
     throw csv_error(path, line, "rows", std::to_string(t_s.size()) + " data row(s), a trajectory needs at least 2");
@@ -131,28 +135,45 @@ JointTrajectory JointTrajectory::load_csv(const std::string& path, size_t joints
   const double t0 = t_s.front();
   for (double& t : t_s) t -= t0;
   if (!has_velocities) dq = finite_differences(t_s, q, joints);
-  return JointTrajectory(joints, std::move(t_s), std::move(q), std::move(dq));
+  return JointTrajectory(joints, std::move(t_s), std::move(q), std::move(dq), std::move(tau));
 }
 
-JointTrajectory::JointTrajectory(size_t joints, std::vector<double> t_s, std::vector<double> q, std::vector<double> dq)
-    : joints_(joints), t_s_(std::move(t_s)), q_(std::move(q)), dq_(std::move(dq)) {}
+JointTrajectory::JointTrajectory(size_t joints, std::vector<double> t_s, std::vector<double> q, std::vector<double> dq,
+                                 std::vector<double> tau)
+    : joints_(joints), t_s_(std::move(t_s)), q_(std::move(q)), dq_(std::move(dq)), tau_(std::move(tau)) {}
 
-void JointTrajectory::sample(double t_s, JointVector& q_rad, JointVector& dq_radps) const {
+JointTrajectory::Segment JointTrajectory::locate(double t_s) const {
   const double end_s = duration_s();
   // looping: +Inf becomes NaN here and so holds the first row below
   if (loop_ && t_s >= end_s) t_s = std::fmod(t_s, end_s);
-  if (!(t_s >= 0.0)) return hold(0, q_rad, dq_radps);
-  if (t_s >= end_s) return hold(rows() - 1, q_rad, dq_radps);
-
+  if (!(t_s >= 0.0)) return {0, 0.0, true};
+  if (t_s >= end_s) return {rows() - 1, 0.0, true};
   // the segment [t_i, t_i+1) holding t_s: binary search, no allocation
   const size_t i = static_cast<size_t>(std::upper_bound(t_s_.begin(), t_s_.end(), t_s) - t_s_.begin()) - 1;
-  const double w = (t_s - t_s_[i]) / (t_s_[i + 1] - t_s_[i]);
+  return {i, (t_s - t_s_[i]) / (t_s_[i + 1] - t_s_[i]), false};
+}
+
+void JointTrajectory::sample(double t_s, JointVector& q_rad, JointVector& dq_radps) const {
+  const Segment segment = locate(t_s);
+  if (segment.held) return hold(segment.row, q_rad, dq_radps);
+  const size_t i = segment.row;
+  const double w = segment.weight;
   const double* q0 = &q_[i * joints_];
   const double* dq0 = &dq_[i * joints_];
   for (size_t j = 0; j < joints_; ++j) {
     q_rad[j] = q0[j] + w * (q0[j + joints_] - q0[j]);
     dq_radps[j] = dq0[j] + w * (dq0[j + joints_] - dq0[j]);
   }
+}
+
+void JointTrajectory::sample_torque(double t_s, JointVector& tau_nm) const {
+  if (tau_.empty()) {
+    std::fill_n(tau_nm.begin(), joints_, 0.0);
+    return;
+  }
+  const Segment segment = locate(t_s);
+  const double* tau0 = &tau_[segment.row * joints_];
+  for (size_t j = 0; j < joints_; ++j) tau_nm[j] = segment.held ? tau0[j] : tau0[j] + segment.weight * (tau0[j + joints_] - tau0[j]);
 }
 
 void JointTrajectory::hold(size_t row, JointVector& q_rad, JointVector& dq_radps) const {

@@ -214,7 +214,8 @@ void LeaderNode::move_device(double t_s) {
   if (haptic_arm_) {
     // the operator moves the device by the intended motion, from where the device started
     for (size_t i = 0; i < config_.joints; ++i) operator_target_[i] = device_home_[i] + q_operator_[i] - config_.home_rad[i];
-    haptic_arm_->set_operator_target(operator_target_, dq_operator_);
+    motion_.intended_torque(t_s, tau_intended_);
+    haptic_arm_->set_operator_target(operator_target_, dq_operator_, tau_intended_);
   }
   if (!device_impl_->read(device_)) ++device_faults_;
 }

@@ -29,6 +29,14 @@ void OperatorMotion::sample(double t_s, JointVector& q_rad, JointVector& dq_radp
   }
 }
 
+void OperatorMotion::intended_torque(double t_s, JointVector& tau_nm) const {
+  if (config_.kind == OperatorMotionConfig::Kind::kRecorded) {
+    config_.recording->sample_torque(t_s, tau_nm);
+  } else {
+    std::fill_n(tau_nm.begin(), config_.joints, 0.0);
+  }
+}
+
 void OperatorMotion::sine(double t_s, JointVector& q_rad, JointVector& dq_radps) const {
   const double w = 2 * M_PI * config_.frequency_hz;
   const Ramp envelope = smoothstep(t_s, config_.ramp_s);

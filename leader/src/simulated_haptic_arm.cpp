@@ -11,9 +11,11 @@ SimulatedHapticArm::SimulatedHapticArm(const HapticArmConfig& config) : config_(
   target_q_ = measured_.q_rad;
 }
 
-void SimulatedHapticArm::set_operator_target(const JointVector& q_rad, const JointVector& dq_radps) {
+void SimulatedHapticArm::set_operator_target(const JointVector& q_rad, const JointVector& dq_radps,
+                                             const JointVector& intended_nm) {
   target_q_ = q_rad;
   target_dq_ = dq_radps;
+  intended_nm_ = intended_nm;
 }
 
 bool SimulatedHapticArm::read(DeviceState& state) {
@@ -27,7 +29,7 @@ bool SimulatedHapticArm::read(DeviceState& state) {
 bool SimulatedHapticArm::write(const JointVector& feedback_nm) {
   for (size_t i = 0; i < arm_.joints(); ++i) {
     operator_nm_[i] = config_.hand_stiffness_nm_per_rad * (target_q_[i] - measured_.q_rad[i]) +
-                      config_.hand_damping_nms_per_rad * (target_dq_[i] - measured_.dq_radps[i]);
+                      config_.hand_damping_nms_per_rad * (target_dq_[i] - measured_.dq_radps[i]) + intended_nm_[i];
     applied_[i] = operator_nm_[i] + feedback_nm[i];
   }
   return arm_.write(applied_) == follower::HardwareStatus::kOk;

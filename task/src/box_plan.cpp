@@ -30,11 +30,25 @@ BoxPlan load_box_plan(const std::string& path) {
     const auto centre = read_vector3(node, "box_m", {-3, 3});
     waypoint.box_m = {centre[0], centre[1], centre[2]};
     waypoint.gap_m = node.get_double("gap_m", {-0.05, 0.5});
+    waypoint.squeeze_n = node.get_double("squeeze_n", {0, 100}, 0.0);
+    waypoint.lift_n = node.get_double("lift_n", {-100, 100}, 0.0);
     plan.waypoints.push_back(waypoint);
   }
   if (plan.waypoints.empty()) throw root.error("waypoints", "needs at least one waypoint");
   root.check_all_used();
   return plan;
+}
+
+bool BoxPlan::has_force() const {
+  for (const BoxWaypoint& w : waypoints) {
+    if (w.squeeze_n != 0 || w.lift_n != 0) return true;
+  }
+  return false;
+}
+
+Eigen::Vector3d hand_force(const BoxWaypoint& waypoint, Side side) {
+  const double towards_box = side == Side::kLeft ? -1.0 : 1.0;
+  return {0, towards_box * waypoint.squeeze_n, waypoint.lift_n};
 }
 
 Eigen::Vector3d hand_position(const BoxPlan& plan, const BoxWaypoint& waypoint, Side side) {

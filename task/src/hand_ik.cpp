@@ -57,6 +57,13 @@ Eigen::Isometry3d HandIk::flange_pose(const JointVector& q_rad) {
   return pose;
 }
 
+JointVector HandIk::joint_torque(const JointVector& q_rad, const Eigen::Vector3d& force_n) {
+  control::ArmState state;
+  state.q = q_rad;
+  dynamics_.update(state);
+  return dynamics_.jacobian().topRows<3>().transpose() * force_n;
+}
+
 double HandIk::limit_distance(const JointVector& q_rad) const {
   return std::min((q_rad - q_min_).minCoeff(), (q_max_ - q_rad).minCoeff());
 }

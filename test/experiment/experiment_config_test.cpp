@@ -77,6 +77,29 @@ TEST_F(ExperimentFile, NamesFileAndKeyOfEachProblem) {
             file + ":6: experiment.analysis.settle: unknown key");
 }
 
+TEST_F(ExperimentFile, ReadsTheBoxTasksArmsAndTheShelfRegionOfItsScene) {
+  const std::string scene = std::string(TELEOP_SOURCE_DIR) + "/config/models/scene_box_shelf.xml";
+  const auto config = load_experiment(write("  name: x\n  profiles: [none]\n" + std::string(kRuns) +
+                                            "  analysis: {task: box_task, arms: [left, right], scene: " + scene + "}\n"));
+  EXPECT_EQ(config.analysis.kind, AnalysedTask::kBoxTask);
+  EXPECT_EQ(config.analysis.arms, (std::vector<std::string>{"left", "right"}));
+  // the shelf compartment of docs/box_task.md: box centre x 0.58-0.62, z 0.885-0.91 m
+  EXPECT_TRUE(config.analysis.shelf.contains({0.60, 0.0, 0.89}));
+  EXPECT_FALSE(config.analysis.shelf.contains({0.35, 0.0, 0.80})) << "the socket is not the shelf";
+}
+
+TEST_F(ExperimentFile, NamesTheKeyOfABoxTaskWithoutArmsOrWithASceneWithoutAShelf) {
+  const std::string file = dir_.path("e.yaml");
+  const std::string base = "  name: x\n  profiles: [none]\n" + std::string(kRuns);
+  EXPECT_EQ(error_for(base + "  analysis: {task: box_task, scene: node.yaml}\n"),
+            file + ":6: experiment.analysis.arms: the box task needs the arms whose columns the traces prefix, e.g. "
+                   "[left, right]");
+  const std::string wall = std::string(TELEOP_SOURCE_DIR) + "/config/models/scene_wall.xml";
+  EXPECT_NE(error_for(base + "  analysis: {task: box_task, arms: [left], scene: " + wall + "}\n")
+                .find(file + ":6: experiment.analysis.scene: "),
+            std::string::npos);
+}
+
 TEST_F(ExperimentFile, NamesTheRunWhenItsScenarioIsInvalid) {
   dir_.write("bad_scenario.yaml", "scenario: {name: s}\nnodes: []\n");
   const std::string e =

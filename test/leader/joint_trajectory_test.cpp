@@ -71,6 +71,26 @@ TEST_F(JointTrajectoryTest, UsesRecordedVelocitiesWhenPresent) {
   EXPECT_DOUBLE_EQ(dq_[0], 6.0);
 }
 
+TEST_F(JointTrajectoryTest, InterpolatesTheOperatorsIntendedTorqueAndHoldsItAtTheEnds) {
+  const auto trajectory = load("t_s,q_0,tau_op_0\n0,0,2\n1,0,6\n", 1);
+  JointVector tau{};
+  trajectory.sample_torque(0.25, tau);
+  EXPECT_DOUBLE_EQ(tau[0], 3.0);
+  trajectory.sample_torque(-1.0, tau);
+  EXPECT_DOUBLE_EQ(tau[0], 2.0);
+  trajectory.sample_torque(5.0, tau);
+  EXPECT_DOUBLE_EQ(tau[0], 6.0) << "the operator keeps pressing after the recording ends";
+}
+
+TEST_F(JointTrajectoryTest, IntendsNoTorqueWithoutTorqueColumns) {
+  const auto trajectory = load(kTwoJoints);
+  JointVector tau{};
+  tau.fill(9.0);
+  trajectory.sample_torque(0.5, tau);
+  EXPECT_EQ(tau[0], 0.0);
+  EXPECT_EQ(tau[1], 0.0);
+}
+
 TEST_F(JointTrajectoryTest, HoldsTheFirstRowBeforeAndTheLastRowAfterTheEnd) {
   const auto trajectory = load(kTwoJoints);
   trajectory.sample(-1.0, q_, dq_);

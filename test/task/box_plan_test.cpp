@@ -121,7 +121,7 @@ TEST_F(HandTrajectories, RegeneratesTheCommittedCsvFilesWhenThePlanIsRun) {
     const auto actual = read_rows(fresh);
     ASSERT_EQ(actual.size(), expected.size()) << "regenerate with teleop_box_plan (docs/box_task.md)";
     for (size_t r = 0; r < actual.size(); ++r) {
-      ASSERT_EQ(actual[r].size(), 8u);
+      ASSERT_EQ(actual[r].size(), 15u) << "t_s, q_0..6, tau_op_0..6 (the plan asks for hand forces)";
       for (size_t c = 0; c < actual[r].size(); ++c) {
         ASSERT_NEAR(actual[r][c], expected[r][c], 1e-9) << "row " << r << " column " << c;
       }
@@ -149,6 +149,12 @@ TEST_F(HandTrajectories, ReachesEveryWaypointFacingTheBoxInsideTheJointLimitsWhe
       EXPECT_LT((flange - hand_position(plan, waypoint, hand.side)).norm(), 1e-3);
       // the flange's z axis (third column of the site frame) points at the box face
       EXPECT_NEAR(arm.data()->site_xmat[9 * site + 5], towards_box, 1e-6);
+      // the operator's torque exerts the waypoint's hand force at the flange: tau = J^T f
+      mj_forward(arm.model(), arm.data());
+      Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::RowMajor> jacobian(3, arm.model()->nv);
+      mj_jacSite(arm.model(), arm.data(), jacobian.data(), nullptr, site);
+      const Eigen::VectorXd expected = jacobian.transpose() * hand_force(waypoint, hand.side);
+      for (int j = 0; j < control::kDof; ++j) EXPECT_NEAR(hand.tau_nm[row][j], expected[j], 1e-9) << "joint " << j;
     }
   }
 }

@@ -4,17 +4,29 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "teleop/experiment/metrics.h"
 #include "teleop/experiment/trace.h"
+#include "teleop/task/box_task_metrics.h"
 
 namespace teleop::experiment {
 
+/// What the runs do, which decides the metrics: a single arm pressing a stiff wall (force and
+/// tracking errors in the hold window) or the two-arm box task (docs/box_task.md).
+enum class AnalysedTask { kStiffWall, kBoxTask };
+
 /// The `analysis:` section of an experiment file. Times are seconds after the first leader row.
 struct AnalysisConfig {
+  AnalysedTask kind = AnalysedTask::kStiffWall;
   std::string leader = "leader";
   std::string follower = "follower";
+  /// kBoxTask: the arms, whose columns the traces prefix with "<arm>_", and where the box must
+  /// end up (the shelf region of the scene named by analysis.scene).
+  std::vector<std::string> arms;
+  task::BoxRegion shelf{};
   double settle_s = 1.0;
+  /// Stiff wall: the contact held; box task: the carry (MAD, stability).
   Window hold{6.0, 10.0};
   double stable_max_mad_rad = 1e-4;
   double stable_max_saturation = 0.01;

@@ -36,6 +36,8 @@ struct RunRow {
   std::string trace_dir;
   RunMetrics metrics;
   Verdict verdict;
+  /// The box task's own metrics (analysis.task: box_task), when the traces could be analysed.
+  std::optional<task::BoxTaskMetrics> box_task;
 };
 
 struct ExperimentResult {

@@ -125,6 +125,7 @@ class LeaderNode final : public runtime::NodeLogic {
   JointVector q_operator_{};
   JointVector dq_operator_{};
   JointVector operator_target_{};
+  JointVector tau_intended_{};  // the torque the operator adds on purpose (e.g. a squeeze)
   DeviceState device_{};
   JointVector device_home_{};
   JointVector q_cmd_{};

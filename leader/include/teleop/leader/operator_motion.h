@@ -2,7 +2,8 @@
 // Where the simulated operator wants the device to be (joint space), as a function of time:
 //   sine       home + a sin(2 pi f t + 0.4 i) per joint i, the amplitude faded in over ramp_s
 //   push_hold  home + a s(t/ramp_s), s the smoothstep: moves a (e.g. into a wall) and holds
-//   recorded   a recorded joint motion (CSV, e.g. the device columns of an earlier leader trace)
+//   recorded   a recorded joint motion (CSV, e.g. the device columns of an earlier leader trace),
+//              optionally with the torque the operator adds on purpose
 // Real-time safe.
 
 #include <memory>
@@ -32,6 +33,9 @@ class OperatorMotion {
 
   /// The intended position and velocity at `t_s` after the start.
   void sample(double t_s, JointVector& q_rad, JointVector& dq_radps) const;
+  /// The torque the operator adds on purpose at `t_s` (a recording's tau_op_ columns, e.g. a
+  /// squeeze: a person grasps by pressing, not by aiming deeper); zero for the other kinds.
+  void intended_torque(double t_s, JointVector& tau_nm) const;
 
  private:
   void sine(double t_s, JointVector& q_rad, JointVector& dq_radps) const;

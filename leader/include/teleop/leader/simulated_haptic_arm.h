@@ -25,8 +25,9 @@ class SimulatedHapticArm final : public LeaderDevice {
  public:
   explicit SimulatedHapticArm(const HapticArmConfig& config);
 
-  /// Where the operator pulls the device (joint space). Real-time safe.
-  void set_operator_target(const JointVector& q_rad, const JointVector& dq_radps);
+  /// Where the operator pulls the device (joint space), and the torque the operator adds on
+  /// purpose on top of the hand's spring-damper. Real-time safe.
+  void set_operator_target(const JointVector& q_rad, const JointVector& dq_radps, const JointVector& intended_nm);
 
   size_t joints() const override { return arm_.joints(); }
   [[nodiscard]] bool read(DeviceState& state) override;
@@ -39,6 +40,7 @@ class SimulatedHapticArm final : public LeaderDevice {
   follower::ArmState measured_{};
   JointVector target_q_{};
   JointVector target_dq_{};
+  JointVector intended_nm_{};
   JointVector operator_nm_{};
   JointVector applied_{};
 };

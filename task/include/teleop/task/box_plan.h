@@ -20,6 +20,11 @@ struct BoxWaypoint {
   double t_s = 0;         ///< after the start at the "home" pose
   Eigen::Vector3d box_m;  ///< box centre the hands hold (robot base frame)
   double gap_m = 0;       ///< flange tip to side face along y; negative presses into the face
+  /// The force the operator's hand adds on purpose at the flange [N]: towards the box face (the
+  /// squeeze) and upwards (holding up its share of the box's weight). A person grasps by pressing
+  /// and feels the result, so an operator in the loop squeezes with force, not with depth.
+  double squeeze_n = 0;
+  double lift_n = 0;
 };
 
 struct BoxPlan {
@@ -34,6 +39,8 @@ struct BoxPlan {
 
   const std::string& model(Side side) const { return side == Side::kLeft ? left_model : right_model; }
   double duration_s() const { return waypoints.back().t_s; }
+  /// Whether any waypoint asks for a force (the trajectories then carry the operator's torque).
+  bool has_force() const;
 };
 
 /// Loads a plan. Throws ConfigError "<file>:<line>: <key>: <problem>" for a missing or unknown
@@ -42,5 +49,9 @@ BoxPlan load_box_plan(const std::string& path);
 
 /// Where `side`'s flange tip is at `waypoint`: beside the box face, grip_height_m above the centre.
 Eigen::Vector3d hand_position(const BoxPlan& plan, const BoxWaypoint& waypoint, Side side);
+
+/// The operator's intended force on `side`'s flange at `waypoint` (robot base frame): squeeze_n
+/// towards the box face, lift_n up.
+Eigen::Vector3d hand_force(const BoxWaypoint& waypoint, Side side);
 
 }  // namespace teleop::task

@@ -36,6 +36,8 @@ class HandIk {
   /// Flange pose for joints q (forward kinematics).
   Eigen::Isometry3d flange_pose(const control::JointVector& q_rad);
 
+  /// The joint torque that exerts `force_n` (world frame) at the flange at joints q: J^T f.
+  control::JointVector joint_torque(const control::JointVector& q_rad, const Eigen::Vector3d& force_n);
   /// Smallest distance of q to the model's joint range, over the joints [rad].
   double limit_distance(const control::JointVector& q_rad) const;
 
