@@ -1,10 +1,9 @@
 // teleop_twin: the digital twin.
-#include "teleop/twin/twin_node.h"
+#include "teleop/twin/twin_arms.h"
 
 int main(int argc, char** argv) {
-  using teleop::twin::TwinNode;
   return teleop::runtime::run_node(argc, argv,
                                    {teleop::msg::ROLE_TWIN, "twin",
                                     "teleop twin: simulated copy of the robot, renders contact forces back",
-                                    teleop::runtime::parser_for<TwinNode>()});
+                                    teleop::twin::twin_logic_parser()});
 }

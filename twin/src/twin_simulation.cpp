@@ -29,6 +29,21 @@ int substeps_of(const mjModel* m, double period_s, const std::string& path) {
   return n;
 }
 
+// every arm's joints one after the other; without prefixes all actuated hinges, as one arm
+sim::ActuatedJoints find_driven_joints(const mjModel* m, const TwinModelConfig& config) {
+  if (config.joint_prefixes.empty()) return sim::find_actuated_joints(m, config.model_path);
+  sim::ActuatedJoints all;
+  for (const std::string& prefix : config.joint_prefixes) {
+    const sim::ActuatedJoints arm = sim::find_actuated_joints(m, config.model_path, prefix);
+    if (all.count + arm.count > kMaxJoints) throw std::runtime_error(config.model_path + ": too many driven joints");
+    std::copy_n(arm.qpos.begin(), arm.count, all.qpos.begin() + all.count);
+    std::copy_n(arm.dof.begin(), arm.count, all.dof.begin() + all.count);
+    std::copy_n(arm.actuator.begin(), arm.count, all.actuator.begin() + all.count);
+    all.count += arm.count;
+  }
+  return all;
+}
+
 }  // namespace
 
 std::vector<sim::ModelAddition> margin_geometry(const TwinModelConfig& config) {
@@ -54,7 +69,7 @@ std::vector<sim::ModelAddition> margin_geometry(const TwinModelConfig& config) {
 TwinSimulation::TwinSimulation(const TwinModelConfig& config)
     : config_(config),
       sim_(sim::load_with_additions(config.model_path, margin_geometry(config))),
-      joints_(sim::find_actuated_joints(sim_.model(), config.model_path)),
+      joints_(find_driven_joints(sim_.model(), config)),
       contacts_(sim_.model(), config.contact_pairs, config.model_path),
       distances_(sim_.model(), config.distance_pairs, config.model_path),
       substeps_(substeps_of(sim_.model(), config.period_s, config.model_path)),

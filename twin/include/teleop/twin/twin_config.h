@@ -55,6 +55,11 @@ struct MmtConfig {
 };
 
 struct TwinConfig {
+  /// The arm of a multi-arm twin this config is for (twin.arms; its topics are T/<arm>), "" for
+  /// the one arm of a one-arm twin (plain topics).
+  std::string arm;
+  /// The arm's joints in the model: those whose names start with this ("" for a one-arm twin).
+  std::string joint_prefix;
   TwinMode mode = TwinMode::kRealtime;
   /// Joints of the coupled robot; the model must drive exactly these.
   size_t joints = 7;

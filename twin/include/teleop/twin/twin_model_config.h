@@ -44,6 +44,9 @@ struct TwinModelConfig {
   std::string model_path;
   /// Start pose ("" = the model's default state).
   std::string keyframe;
+  /// The driven joints: the actuated hinge joints whose names start with each prefix, one arm
+  /// after the other in this order (twin.arms). Empty: every actuated hinge joint.
+  std::vector<std::string> joint_prefixes;
   /// Control period; the model's timestep must divide it. 0: one timestep (lock-step).
   double period_s = 0.001;
   /// K and D of PARTI eq. 2, per coupled joint.

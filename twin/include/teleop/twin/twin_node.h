@@ -12,14 +12,17 @@
 #include <teleop/msg/arm.h>
 #include <teleop/msg/twin.h>
 
-#include "teleop/common/lowpass.h"
 #include "teleop/runtime/node_runner.h"
 #include "teleop/transport/publication.h"
 #include "teleop/transport/subscription.h"
+#include "teleop/twin/coupled_robot.h"
+#include "teleop/twin/feedback_renderer.h"
 #include "teleop/twin/hil_controller.h"
 #include "teleop/twin/lockstep_link.h"
+#include "teleop/twin/mmt_command.h"
 #include "teleop/twin/model_correction.h"
 #include "teleop/twin/twin_config.h"
+#include "teleop/twin/twin_observations.h"
 #include "teleop/twin/twin_simulation.h"
 
 namespace teleop::twin {
@@ -47,24 +50,23 @@ class TwinNode final : public runtime::NodeLogic {
   void cycle_coupled(const CycleTick& tick);
   void cycle_lockstep();
   void cycle_hil(const CycleTick& tick);
-  void command_follower();
-  void render_feedback(bool coupled_fresh);
-  void publish_observations();
+  void publish_state();
+  uint64_t rejected_samples() const { return rejected_samples_ + (coupled_ ? coupled_->rejected() : 0); }
   void record_trajectory();
   void write_trajectory() const;
 
   TwinConfig config_;
   TwinSimulation sim_;
   size_t joints_;
-  LowPassFilter feedback_filter_;
-  std::optional<transport::Subscription<msg::JointState>> coupled_;
+  std::optional<CoupledRobot> coupled_;                                // real-time mode
+  std::optional<transport::Subscription<msg::JointState>> measured_;  // hardware in the loop
   transport::Publication<msg::JointState> state_pub_;
-  transport::Publication<msg::JointTorque> feedback_pub_;
-  transport::Publication<msg::GeomDistances> distances_pub_;
-  std::vector<std::unique_ptr<transport::Publication<msg::WrenchStamped>>> wrench_pubs_;
+  FeedbackRenderer feedback_;
+  TwinObservations observations_;
   std::optional<LockstepLink> lockstep_;
   std::optional<HilController> hil_;
-  std::optional<transport::Publication<msg::JointCommand>> command_pub_;
+  std::optional<transport::Publication<msg::JointCommand>> hil_command_pub_;
+  std::optional<MmtCommand> mmt_command_;
   std::optional<ModelCorrection> correction_;
 
   msg::NodeState state_ = msg::STATE_STARTING;
@@ -72,15 +74,7 @@ class TwinNode final : public runtime::NodeLogic {
   JointVector dq_coupled_{};
   JointVector tau_cmd_{};
   JointVector damping_cmd_{};
-  JointVector feedback_nm_{};
-  JointVector contact_torque_nm_{};  // the constraint torque without joint friction, low-passed
-  int64_t first_cycle_ns_ = -1;
-  int64_t last_cycle_ns_ = 0;
-  double sim_start_s_ = 0.0;
   double hil_start_s_ = 0.0;
-  double peak_feedback_nm_ = 0.0;
-  double peak_contact_force_n_ = 0.0;
-  double min_distance_m_ = 0.0;
   double goal_error_rad_ = -1.0;
   uint64_t rejected_samples_ = 0;
   uint64_t stalls_ = 0;

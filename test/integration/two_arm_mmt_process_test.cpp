@@ -1,0 +1,101 @@
+// The box task under model-mediated teleoperation as real processes (issue 6): the two-arm leader
+// station, the two-arm twin of the whole scene and the two-arm follower, started by `teleop launch`
+// from config/scenarios/box_task_mmt.yaml. Each twin arm tracks its own leader arm, each follower
+// arm its own twin arm, on the per-arm topics. Whether the box gets lifted is the operator plan's
+// business (not asserted): the test prints the task's figures from the follower's trace.
+#include <gtest/gtest.h>
+
+#include <teleop/msg/status.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+
+#include "process_helpers.h"
+#include "teleop/experiment/trace.h"
+#include "teleop/runtime/node_report.h"
+
+namespace teleop::test {
+namespace {
+
+double counter(const runtime::NodeReport& report, const std::string& name) {
+  for (const auto& [n, v] : report.counters) {
+    if (n == name) return v;
+  }
+  ADD_FAILURE() << report.name << " reports no " << name;
+  return -1.0;
+}
+
+uint64_t published(const runtime::NodeReport& report, const std::string& topic) {
+  for (const auto& p : report.published) {
+    if (p.topic == topic) return p.sent;
+  }
+  return 0;
+}
+
+uint64_t received(const runtime::NodeReport& report, const std::string& topic) {
+  for (const auto& r : report.received) {
+    if (r.topic == topic) return r.received;
+  }
+  return 0;
+}
+
+// the share of rows of `state` in safe hold after the first running one
+double safe_hold_share(const std::vector<double>& state) {
+  const auto running = std::find(state.begin(), state.end(), static_cast<double>(msg::STATE_RUNNING));
+  if (running == state.end()) return 1.0;
+  const auto held = std::count(running, state.end(), static_cast<double>(msg::STATE_SAFE_HOLD));
+  return static_cast<double>(held) / static_cast<double>(state.end() - running);
+}
+
+double max_of(const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); }
+
+TEST(TwoArmMmtProcesses, EachFollowerArmTracksItsTwinArmAndEachTwinArmItsLeaderArm) {
+  const std::string dir = make_temp_dir();
+  const ProcessResult run =
+      run_process({bin("teleop"), "launch", source("config/scenarios/box_task_mmt.yaml"), "--duration", "8", "--domain",
+                   std::to_string(unique_domain()), "--report-dir", dir, "--trace-dir", dir},
+                  std::chrono::seconds(40));
+  ASSERT_EQ(run.exit_status, 0) << run.output;
+  const auto twin = runtime::read_report(dir + "/twin.yaml");
+  const auto follower = runtime::read_report(dir + "/follower.yaml");
+
+  for (const std::string arm : {"left", "right"}) {
+    SCOPED_TRACE(arm);
+    // the twin arm follows its leader arm (eq. 2), the follower arm its twin arm (MMT command);
+    // in contact the twin arm stays at the box while the leader's presses on: millirad on average
+    EXPECT_LT(counter(twin, arm + ".coupling_rmse_rad"), 0.02);
+    EXPECT_LT(counter(follower, arm + ".tracking_rmse_rad"), 0.02);
+    EXPECT_GT(received(twin, "teleop/leader/joint_state/" + arm), 1000u);
+    EXPECT_GT(published(twin, "teleop/twin/feedback_torque/" + arm), 1000u);
+    EXPECT_GT(received(follower, "teleop/twin/joint_command/" + arm), 1000u);
+  }
+  // one scene, stepped once per cycle for both arms: the arms publish in lock
+  EXPECT_EQ(published(twin, "teleop/twin/joint_state/left"), published(twin, "teleop/twin/joint_state/right"));
+  EXPECT_EQ(published(twin, "teleop/twin/joint_command"), 0u) << "no arm on the one-arm topic";
+  EXPECT_EQ(counter(twin, "mujoco_warnings"), 0.0);
+
+  // both arms keep running: the twin's never lose their leader arm; the follower's may time out
+  // on a command for a moment when this shared 2-core machine stalls a process for > 20 ms
+  // (command_timeout_ms), which is its watchdog working, not MMT failing
+  const auto twin_trace = experiment::read_trace(dir + "/twin.csv");
+  const auto follower_trace = experiment::read_trace(dir + "/follower.csv");
+  for (const std::string arm : {"left", "right"}) {
+    SCOPED_TRACE(arm);
+    EXPECT_EQ(safe_hold_share(twin_trace.column(arm + "_state")), 0.0);
+    EXPECT_LT(safe_hold_share(follower_trace.column(arm + "_state")), 0.1);
+  }
+  EXPECT_EQ(twin.final_state, "running");
+  EXPECT_EQ(follower.final_state, "running");
+
+  // what the task's figures show (not asserted; docs/box_task.md)
+  std::printf("box task (follower): box_z max %.4f m (rests at 0.80), squeeze max left %.1f N right %.1f N\n",
+              max_of(follower_trace.column("box_z")), max_of(follower_trace.column("left_squeeze_n")),
+              max_of(follower_trace.column("right_squeeze_n")));
+  std::printf("box task (twin): box over the table max %.4f m, grip max left %.1f N right %.1f N\n",
+              max_of(twin_trace.column("distance_box_table_m")), max_of(twin_trace.column("contact_left_hand_box_n")),
+              max_of(twin_trace.column("contact_right_hand_box_n")));
+}
+
+}  // namespace
+}  // namespace teleop::test

@@ -1,0 +1,38 @@
+#pragma once
+// The robot a twin arm is coupled to in real-time mode (PARTI eq. 2's q_phys): the newest joint
+// angles it published, whether they are fresh, and the state that follows. Setup allocates
+// (the reader); update() does not.
+
+#include <teleop/msg/arm.h>
+#include <teleop/msg/status.h>
+
+#include "teleop/common/joint_model.h"
+#include "teleop/transport/participant.h"
+#include "teleop/transport/subscription.h"
+
+namespace teleop::twin {
+
+class CoupledRobot {
+ public:
+  /// Reads `topic`; the angles start at `start_rad` (the twin's own pose: no pull before a sample).
+  CoupledRobot(transport::Participant& participant, const transport::TopicSpec<msg::JointState>& topic, size_t joints,
+               double peer_timeout_s, const JointVector& start_rad);
+
+  /// Takes what arrived: a sample with the wrong joint count is rejected (counted) and the last
+  /// angles kept. Returns whether the robot is fresh and moves `state` accordingly: running while
+  /// fresh, safe hold once a running robot lapsed. Real-time safe.
+  bool update(int64_t now_ns, msg::NodeState& state);
+
+  const JointVector& q_rad() const { return q_rad_; }
+  uint64_t rejected() const { return rejected_; }
+  const transport::Subscription<msg::JointState>& subscription() const { return sub_; }
+
+ private:
+  transport::Subscription<msg::JointState> sub_;
+  size_t joints_;
+  int64_t timeout_ns_;
+  JointVector q_rad_;
+  uint64_t rejected_ = 0;
+};
+
+}  // namespace teleop::twin

@@ -1,0 +1,25 @@
+#include "teleop/twin/coupled_robot.h"
+
+#include "teleop/transport/joint_fields.h"
+
+namespace teleop::twin {
+
+CoupledRobot::CoupledRobot(transport::Participant& participant, const transport::TopicSpec<msg::JointState>& topic,
+                           size_t joints, double peer_timeout_s, const JointVector& start_rad)
+    : sub_(participant, topic),
+      joints_(joints),
+      timeout_ns_(static_cast<int64_t>(peer_timeout_s * 1e9)),
+      q_rad_(start_rad) {}
+
+bool CoupledRobot::update(int64_t now_ns, msg::NodeState& state) {
+  if (sub_.poll() > 0 && !transport::read_joints(sub_.latest().q_rad(), joints_, q_rad_)) ++rejected_;
+  const bool fresh = sub_.age_ns(now_ns) < timeout_ns_;
+  if (fresh) {
+    state = msg::STATE_RUNNING;
+  } else if (state == msg::STATE_RUNNING) {
+    state = msg::STATE_SAFE_HOLD;
+  }
+  return fresh;
+}
+
+}  // namespace teleop::twin
