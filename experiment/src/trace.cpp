@@ -30,7 +30,9 @@ bool parse_cell(const std::string& cell, double& value) {
   char* end = nullptr;
   errno = 0;
   value = std::strtod(cell.c_str(), &end);
-  return end == cell.c_str() + cell.size() && errno != ERANGE;
+  // ERANGE also flags an underflow to a subnormal (a filtered torque decaying to 1e-308): a number;
+  // only an overflow (inf) is not
+  return end == cell.c_str() + cell.size() && !(errno == ERANGE && std::isinf(value));
 }
 
 }  // namespace

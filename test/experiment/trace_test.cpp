@@ -18,6 +18,7 @@ TEST(ReadTrace, ReadsWhatTheRecorderWrites) {
   double* row = recorder.begin_row(12'345'678'901'234);
   row[0] = 0.125;
   row[1] = -1e-9;
+  row[2] = -1.88048943e-308;  // subnormal: a filtered signal decaying towards 0
   recorder.begin_row(12'345'679'901'234)[0] = 2.0;  // the rest NaN
   test::TempDir dir("read_trace");
   recorder.write_csv(dir.path("t.csv"));
@@ -26,6 +27,7 @@ TEST(ReadTrace, ReadsWhatTheRecorderWrites) {
   EXPECT_DOUBLE_EQ(t.t_s[0], 12345.678901234);
   EXPECT_DOUBLE_EQ(t.column("q_0")[0], 0.125);
   EXPECT_DOUBLE_EQ(t.column("q_1")[0], -1e-9);
+  EXPECT_DOUBLE_EQ(t.column("w")[0], -1.88048943e-308);
   EXPECT_DOUBLE_EQ(t.column("q_0")[1], 2.0);
   EXPECT_TRUE(std::isnan(t.column("w")[1]));
   EXPECT_EQ(t.numbered("q_").size(), 2u);
@@ -50,6 +52,8 @@ TEST(ReadTrace, NamesTheFileAndLineOfBrokenContent) {
             dir.path("n.csv") + ":3: 1 cells, the header has 2");
   EXPECT_EQ(error_of([&] { read_trace(dir.write("v.csv", "t_s,a\n1,2x\n")); }),
             dir.path("v.csv") + ":2: a: '2x' is not a number");
+  EXPECT_EQ(error_of([&] { read_trace(dir.write("o.csv", "t_s,a\n1,1e999\n")); }),
+            dir.path("o.csv") + ":2: a: '1e999' is not a number");
   EXPECT_EQ(error_of([&] { read_trace(dir.write("t.csv", "t_s,a\nnan,1\n")); }),
             dir.path("t.csv") + ":2: t_s: 'nan' is not a time");
 }
