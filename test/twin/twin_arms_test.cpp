@@ -33,12 +33,7 @@ std::string box_task_yaml(const std::string& twin_keys = "", const std::string& 
 }
 
 std::string error_of(const std::string& yaml) {
-  try {
-    parse_twin_arms(ConfigNode::load_string(yaml, "twin_box_task.yaml"));
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
+  return test::config_error(parse_twin_arms, yaml, "twin_box_task.yaml");
 }
 
 TEST(TwinArmsConfig, GivesOneConfigPerArmWithItsPrefix) {

@@ -13,14 +13,7 @@ std::string twin_yaml(const std::string& extra_model, const std::string& extra_t
          extra_model;
 }
 
-std::string error_of(const std::string& yaml) {
-  try {
-    parse_twin_config(ConfigNode::load_string(yaml, "twin.yaml"));
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string error_of(const std::string& yaml) { return test::config_error(parse_twin_config, yaml, "twin.yaml"); }
 
 TEST(TwinConfig, ReadsModelMarginsAndPairs) {
   const TwinConfig c = parse_twin_config(ConfigNode::load_string(

@@ -6,9 +6,22 @@
 #include <cmath>
 #include <string>
 
+#include "teleop/common/config.h"
 #include "teleop/twin/twin_model_config.h"
 
 namespace teleop::twin::test {
+
+/// The message of the ConfigError `parse` throws for the config text `yaml` read as the file
+/// `file_name`; "" when it throws none.
+template <typename Parse>
+std::string config_error(Parse parse, const std::string& yaml, const std::string& file_name) {
+  try {
+    parse(ConfigNode::load_string(yaml, file_name));
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
 
 inline std::string model_path(const std::string& name) {
   return std::string(TELEOP_SOURCE_DIR) + "/config/models/" + name;
