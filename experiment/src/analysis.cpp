@@ -19,17 +19,6 @@ Axes interpolate_axes(const Trace& from, const Axes& values, const std::vector<d
           interpolate(from.t_s, values[2], at)};
 }
 
-// times relative to `t0_s`
-std::vector<double> relative(const std::vector<double>& t_s, double t0_s) {
-  std::vector<double> out(t_s);
-  for (double& t : out) t -= t0_s;
-  return out;
-}
-
-void require_rows(const Trace& trace) {
-  if (trace.t_s.empty()) throw TraceError(trace.file + ": the trace has no rows");
-}
-
 std::string format(const char* fmt, double a, double b) {
   char text[96];
   std::snprintf(text, sizeof text, fmt, a, b);

@@ -42,10 +42,9 @@ task::BoxTaskSeries box_task_series(const Trace& follower) {
 }
 
 RunMetrics analyse_arms(const Trace& leader, const Trace& follower, const AnalysisConfig& config) {
-  if (leader.t_s.empty()) throw TraceError(leader.file + ": the trace has no rows");
-  if (follower.t_s.empty()) throw TraceError(follower.file + ": the trace has no rows");
-  std::vector<double> t_follower(follower.t_s);
-  for (double& t : t_follower) t -= leader.t_s.front();
+  require_rows(leader);
+  require_rows(follower);
+  const std::vector<double> t_follower = relative(follower.t_s, leader.t_s.front());
 
   RunMetrics m;
   for (const std::string& arm : config.arms) {

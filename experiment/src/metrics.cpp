@@ -24,6 +24,12 @@ size_t for_each_in(const std::vector<double>& t, const std::vector<double>& v, W
 
 }  // namespace
 
+std::vector<double> relative(const std::vector<double>& t_s, double t0_s) {
+  std::vector<double> out(t_s);
+  for (double& t : out) t -= t0_s;
+  return out;
+}
+
 std::vector<double> interpolate(const std::vector<double>& t, const std::vector<double>& v,
                                 const std::vector<double>& at) {
   std::vector<double> out(at.size(), kNaN);

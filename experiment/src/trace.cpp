@@ -37,6 +37,10 @@ bool parse_cell(const std::string& cell, double& value) {
 
 }  // namespace
 
+void require_rows(const Trace& trace) {
+  if (trace.t_s.empty()) throw TraceError(trace.file + ": the trace has no rows");
+}
+
 bool Trace::has(const std::string& name) const { return std::find(names.begin(), names.end(), name) != names.end(); }
 
 const std::vector<double>& Trace::column(const std::string& name) const {

@@ -23,6 +23,9 @@ using Axes = std::array<std::vector<double>, 3>;
 std::vector<double> interpolate(const std::vector<double>& t, const std::vector<double>& v,
                                 const std::vector<double>& at);
 
+/// The times `t_s` taken relative to `t0_s`.
+std::vector<double> relative(const std::vector<double>& t_s, double t0_s);
+
 /// Per sample: the Euclidean norm |a|.
 std::vector<double> norm(const Axes& a);
 /// Per sample: the Euclidean distance |a - b|.

@@ -31,6 +31,9 @@ struct Trace {
   std::vector<const std::vector<double>*> numbered(const std::string& prefix) const;
 };
 
+/// Throws TraceError naming the file when `trace` has no rows.
+void require_rows(const Trace& trace);
+
 /// Reads a trace CSV. Empty cells and `nan` read as NaN. Throws TraceError when the file cannot
 /// be read, has no `t_s` first column, or a row with the wrong number of cells or a bad number.
 Trace read_trace(const std::string& path);
