@@ -72,7 +72,7 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<RobotHa
     const double h = 1.0 / context.node.rate_hz;
     tdpa_.emplace(context.participant, context.node.name, config.arm, teleoperation::TdpaEnd::kFollower, 6, h, correct,
                   config.teleoperation->tdpa.max_follower_damping);
-    passive_.emplace(*tdpa_, h);
+    passive_.emplace(*tdpa_, h, config.teleoperation->tdpa);
   }
 }
 
@@ -147,7 +147,7 @@ void FollowerNode::apply_passivity() {
   if (!passive_) return;
   tdpa_->receive();
   if (state_ == msg::STATE_RUNNING && active_.mode == msg::CONTROL_CARTESIAN_IMPEDANCE) {
-    passive_->apply(active_, control_.cartesian_error(), corrected_);
+    passive_->apply(active_, control_.wrench(), corrected_);
     controlled_ = &corrected_;
   } else {
     tdpa_->publish();  // the totals still go out, so the leader's observer keeps up

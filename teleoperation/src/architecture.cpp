@@ -41,6 +41,11 @@ std::optional<TeleoperationConfig> parse_teleoperation_config(const ConfigNode& 
   if (const auto tdpa = section->optional_child("tdpa")) {
     c.tdpa.max_leader_damping = read_max_damping(*tdpa, "max_leader_damping");
     c.tdpa.max_follower_damping = read_max_damping(*tdpa, "max_follower_damping");
+    c.tdpa.drift_time_constant_s = tdpa->get_double("drift_time_constant_s", Range{0, 60}, c.tdpa.drift_time_constant_s);
+    c.tdpa.drift_max_speed_m_per_s =
+        tdpa->get_double("drift_max_speed_m_per_s", Range{1e-6, 10}, c.tdpa.drift_max_speed_m_per_s);
+    c.tdpa.drift_max_speed_rad_per_s =
+        tdpa->get_double("drift_max_speed_rad_per_s", Range{1e-6, 10}, c.tdpa.drift_max_speed_rad_per_s);
   }
   return c;
 }

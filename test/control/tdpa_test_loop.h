@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "teleop/control/drift_compensation.h"
 #include "teleop/control/passivity.h"
 
 namespace teleop::control::test {
@@ -110,6 +111,9 @@ struct LoopParams {
   double sine_hz = 1.0;
   bool controller_enabled = true;
   double max_damping = std::numeric_limits<double>::infinity();
+  /// The follower's drift compensation (drift_compensation.h); 0: none.
+  double drift_time_constant_s = 0.0;
+  double drift_max_speed_mps = 0.1;
   LinkProfile leader_to_follower;
   LinkProfile follower_to_leader;
   std::uint32_t seed = 1;
@@ -138,8 +142,11 @@ struct LoopResult {
   /// last second (sustained oscillation).
   double max_penetration_m = 0.0;
   double late_peak_to_peak_m = 0.0;
-  /// DOF 1: largest |x_F - x_L| over the run (free-motion tracking).
+  /// DOF 1: largest |x_F - x_L| over the run (free-motion tracking), and over the last second.
   double max_free_tracking_error_m = 0.0;
+  double late_free_tracking_error_m = 0.0;
+  /// The follower reference's drift per DOF at the end (drift_compensation.h).
+  DofArray final_drift_m{};
   PassivityPort::Counters leader_counters;
   PassivityPort::Counters follower_counters;
   RemoteEnergy::Counters leader_packets;
@@ -159,6 +166,11 @@ LoopResult run_loop(const LoopParams& p, Audit&& audit) {
   PassivityPort leader(config);
   config.causality = PortCausality::kVelocityOutput;
   PassivityPort follower(config);
+  DriftCompensationConfig drift_config;
+  drift_config.channels = kLoopDof;
+  drift_config.time_constant_s = p.drift_time_constant_s;
+  drift_config.max_speed.fill(p.drift_max_speed_mps);
+  DriftCompensator drift(drift_config);
   DelayLink to_follower(p.leader_to_follower, p.seed);
   DelayLink to_leader(p.follower_to_leader, p.seed + 1);
 
@@ -196,8 +208,9 @@ LoopResult run_loop(const LoopParams& p, Audit&& audit) {
       f_track[j] = p.tracking_stiffness_npm * (x_d[j] - x_f[j]);
       ff[j] = -f_track[j];
     }
-    fv = velocity_rx;
+    for (std::size_t j = 0; j < kLoopDof; ++j) fv[j] = drift.request(j, velocity_rx[j]);
     (void)follower.update(ff, fv, fv_out);
+    for (std::size_t j = 0; j < kLoopDof; ++j) drift.account(j, velocity_rx[j], fv_out[j], h);
     audit(CycleView{k, leader, follower, lf, lv, lf_out, ff, fv, fv_out});
 
     LinkSample to_f{static_cast<std::uint64_t>(k + 1), v_l, leader.make_packet()};
@@ -221,6 +234,7 @@ LoopResult run_loop(const LoopParams& p, Audit&& audit) {
     r.max_penetration_m = std::max(r.max_penetration_m, x_f[0] - p.wall_m[0]);
     r.max_free_tracking_error_m = std::max(r.max_free_tracking_error_m, std::abs(x_f[1] - x_l[1]));
     if (k >= p.cycles - static_cast<int>(1.0 / h)) {
+      r.late_free_tracking_error_m = std::max(r.late_free_tracking_error_m, std::abs(x_f[1] - x_l[1]));
       late_min = std::min(late_min, x_f[0]);
       late_max = std::max(late_max, x_f[0]);
     }
@@ -231,6 +245,7 @@ LoopResult run_loop(const LoopParams& p, Audit&& audit) {
   for (std::size_t j = 0; j < kLoopDof; ++j) {
     r.leader_dissipated_j[j] = leader.dissipated_energy_j(j);
     r.follower_dissipated_j[j] = follower.dissipated_energy_j(j);
+    r.final_drift_m[j] = drift.drift(j);
   }
   r.leader_counters = leader.counters();
   r.follower_counters = follower.counters();

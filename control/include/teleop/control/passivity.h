@@ -12,8 +12,11 @@
 //         same direction.
 //   Leader (position-force): v = the device velocity sent to F, f = the feedback force the
 //     channel delivers, taken as the force that resists v (the device renders -f).
-//   Follower: v = the velocity command the channel delivers, f = minus the follower controller's
-//     force along v (the controller pulls the reference back with -f).
+//   Follower: v = the velocity command the channel delivers, f = the force the channel carries
+//     back: the environment's force on the follower along v (a wall resisting v: f v < 0, the
+//     channel delivers energy into the contact). The force-feedback estimate, not the controller's
+//     own force: that also holds the energy that moves the follower's own mass, which the leader's
+//     port never sees.
 //   E_in  += max(0,  P_k) h    energy the local side put into the channel
 //   E_out += max(0, -P_k) h    energy the channel delivered to the local side
 // Each port sends its cumulative E_in to the other (energy_packets.h); the other one's E_in as

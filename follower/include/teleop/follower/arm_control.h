@@ -60,8 +60,6 @@ class ArmControl {
   const control::Vector6& wrench() const { return wrench_; }
   /// The wrench of the hardware's own external torque (a simulation's ground truth).
   const control::Vector6& hardware_wrench() const { return hardware_wrench_; }
-  /// The Cartesian impedance's pose error of its last compute (translation, rotation vector).
-  const control::Vector6& cartesian_error() const { return cartesian_.last_error(); }
   const Eigen::Vector3d& ee_position() const { return dynamics_.ee_position(); }
   msg::ControlMode mode() const { return static_cast<msg::ControlMode>(switch_.mode()); }
   bool blending() const { return switch_.blending(); }

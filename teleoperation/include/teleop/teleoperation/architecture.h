@@ -28,6 +28,11 @@ struct TdpaSettings {
   /// none (the corrected quantity never changes sign, so unlimited is stable, only less smooth).
   double max_leader_damping = std::numeric_limits<double>::infinity();
   double max_follower_damping = std::numeric_limits<double>::infinity();
+  /// The follower's drift compensation (control/drift_compensation.h): the time constant with
+  /// which the reference's drift is asked back [s], 0: none; and the largest speeds it may use.
+  double drift_time_constant_s = 0.0;
+  double drift_max_speed_m_per_s = 0.05;
+  double drift_max_speed_rad_per_s = 0.2;
 };
 
 struct TeleoperationConfig {
