@@ -6,6 +6,7 @@
 #include "teleop/follower/box_task_trace.h"
 #include "teleop/follower/follower_node.h"
 #include "teleop/follower/mujoco_hardware.h"
+#include "teleop/follower/object_pose_feed.h"
 #include "teleop/runtime/arm_configs.h"
 #include "teleop/runtime/arm_group.h"
 
@@ -37,6 +38,9 @@ std::unique_ptr<runtime::NodeLogic> build_arms(const std::vector<FollowerConfig>
     group.push_back({arm.arm, std::make_unique<FollowerNode>(arm, std::make_unique<MujocoHardware>(scene, arm.mujoco), context)});
   }
   if (arms.front().trace_box_task) group.push_back({"", std::make_unique<BoxTaskTrace>(scene)});
+  if (!arms.front().tracked_objects.bodies.empty()) {
+    group.push_back({"", std::make_unique<ObjectPoseFeed>(arms.front().tracked_objects, scene, context)});
+  }
   // each arm wrote its torques in its cycle: now the world they share moves on
   return std::make_unique<runtime::ArmGroup>(std::move(group), [scene] { scene->step(); });
 }

@@ -94,6 +94,11 @@ FollowerConfig parse_follower_config(const ConfigNode& root) {
   c.control = read_control(s.child("control"), c.joints, s.has("arms"));
   c.trace_box_task = s.get_bool("trace_box_task", false);
   if (c.trace_box_task && !s.has("arms")) throw s.error("trace_box_task", "needs the two arms of follower.arms");
+  if (s.has("tracked_objects")) {
+    if (!s.has("arms")) throw s.error("tracked_objects", "needs the shared scene of follower.arms");
+    c.tracked_objects.bodies = s.get_string_list("tracked_objects");
+    c.tracked_objects.rate_hz = s.get_double("tracked_object_rate_hz", Range{1, 1000}, c.tracked_objects.rate_hz);
+  }
   return c;
 }
 

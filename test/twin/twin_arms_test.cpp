@@ -68,6 +68,27 @@ TEST(TwinArmsConfig, RefusesTheOneArmModesAndCorrectionWithArms) {
   EXPECT_NE(correction.find("one arm"), std::string::npos) << correction;
 }
 
+TEST(TwinArmsConfig, ReadsTheObjectCorrectionAndRefusesItWithoutArms) {
+  const auto arms = parse_twin_arms(ConfigNode::load_string(
+      box_task_yaml("  object_correction: {bodies: [box], stiffness_n_per_m: 300, max_force_n: 5, timeout_ms: 50}\n"),
+      "twin_box_task.yaml"));
+  ASSERT_TRUE(arms[0].object_correction.has_value());
+  EXPECT_EQ(arms[0].object_correction->bodies, std::vector<std::string>{"box"});
+  EXPECT_DOUBLE_EQ(arms[0].object_correction->stiffness_n_per_m, 300.0);
+  EXPECT_DOUBLE_EQ(arms[0].object_correction->max_force_n, 5.0);
+  EXPECT_DOUBLE_EQ(arms[0].object_correction->timeout_s, 0.05);
+  EXPECT_DOUBLE_EQ(arms[0].object_correction->damping_ns_per_m, ObjectCorrectionConfig{}.damping_ns_per_m);
+  const std::string one_arm = test::config_error(
+      parse_twin_arms,
+      "twin:\n  joints: 7\n  model:\n    file: " + test::model_path("scene_wall.xml") +
+          "\n  object_correction: {bodies: [box]}\n",
+      "twin.yaml");
+  EXPECT_NE(one_arm.find("twin.object_correction"), std::string::npos) << one_arm;
+  EXPECT_NE(one_arm.find("twin.arms"), std::string::npos) << one_arm;
+  const std::string no_bodies = error_of(box_task_yaml("  object_correction: {bodies: []}\n"));
+  EXPECT_NE(no_bodies.find("twin.object_correction.bodies"), std::string::npos) << no_bodies;
+}
+
 TEST(TwinArmsConfig, RefusesAnArmWithoutPrefix) {
   std::string yaml = box_task_yaml();
   yaml.replace(yaml.find("{joint_prefix: right_}"), 22, "{joint_prefix: \"\"}");
@@ -107,9 +128,15 @@ struct LeaderArm {
 
 class TwinArmsNodeTest : public ::testing::Test {
  protected:
+  // the remote site's box pulls the twin's (hard enough to lift it, for the test)
+  static constexpr const char* kObjectCorrection =
+      "  object_correction: {bodies: [box], stiffness_n_per_m: 1000, damping_ns_per_m: 60, max_force_n: 40}\n";
   teleop::test::NodeHarness harness{"twin"};
-  std::unique_ptr<runtime::NodeLogic> node =
-      twin_logic_parser()(ConfigNode::load_string(box_task_yaml(), "twin_box_task.yaml"))(harness.context);
+  std::unique_ptr<runtime::NodeLogic> node = twin_logic_parser()(
+      ConfigNode::load_string(box_task_yaml(kObjectCorrection), "twin_box_task.yaml"))(harness.context);
+  transport::Publication<msg::ObjectPose> remote_box{
+      harness.peer, transport::TopicSpec<msg::ObjectPose>{"teleop/follower/object_pose/box", transport::QosPreset::kStream},
+      "follower"};
   LeaderArm left{harness.peer, "left"};
   LeaderArm right{harness.peer, "right"};
   // the keyframe "home" of scene_box_shelf.xml
@@ -117,7 +144,18 @@ class TwinArmsNodeTest : public ::testing::Test {
   JointVector right_home{0.066, 0.739, 0.020, -2.103, -0.044, 2.839, 0.0};
 
   void SetUp() override {
-    ASSERT_TRUE(teleop::test::eventually([&] { return left.matched() && right.matched(); }));
+    ASSERT_TRUE(
+        teleop::test::eventually([&] { return left.matched() && right.matched() && remote_box.matched() > 0; }));
+  }
+
+  // the twin's counter `name` (-1: absent)
+  double counter(const std::string& name) const {
+    runtime::NodeReport report;
+    node->fill_report(report);
+    for (const auto& [n, v] : report.counters) {
+      if (n == name) return v;
+    }
+    return -1.0;
   }
 
   // each arm's leader at its pose (`publish_right` false: the right leader is silent); returns
@@ -189,17 +227,66 @@ TEST_F(TwinArmsNodeTest, ASilentArmAloneGoesToSafeHold) {
   hold(left_home, right_home, 100, false);
   EXPECT_EQ(newest_seq(right.command), right_before);
   EXPECT_GT(newest_seq(left.command), left_before + 50) << "about one command a cycle";
-  runtime::NodeReport report;
-  node->fill_report(report);
-  auto counter = [&](const std::string& name) {
-    for (const auto& [n, v] : report.counters) {
-      if (n == name) return v;
-    }
-    return -1.0;
-  };
   EXPECT_EQ(counter("left.rejected_samples"), 0.0);
   EXPECT_GE(counter("sim_time_s"), 0.5) << "the scene's counters keep the one-arm twin's names";
   EXPECT_EQ(counter("mujoco_warnings"), 0.0);
+}
+
+TEST_F(TwinArmsNodeTest, TheRemoteBoxMeasuredHigherPullsTheTwinsBoxUp) {
+  // the box (1 kg) rests in its socket at z = 0.80; the remote site measures it 5 cm higher. At
+  // 1000 N/m it settles ~1 cm below the target (its weight); the socket's walls keep x and y.
+  std::vector<std::string> columns;
+  node->trace_columns(columns);
+  const auto column = [&](const std::string& name) {
+    return static_cast<size_t>(std::find(columns.begin(), columns.end(), name) - columns.begin());
+  };
+  ASSERT_LT(column("object_box_error_m"), columns.size());
+  ASSERT_LT(column("object_box_force_n"), columns.size());
+  std::vector<double> row(columns.size());
+  // both leader arms hold home; the remote box is measured higher every cycle; returns allocations
+  const auto run = [&](int cycles) {
+    return test::drive_cycles(*node, harness, cycles, [&](int) {
+      remote_box.sample().body("box");
+      remote_box.sample().world_pose().position_m().x(0.35);
+      remote_box.sample().world_pose().position_m().z(0.85);
+      remote_box.sample().world_pose().orientation().w(1.0);
+      EXPECT_TRUE(remote_box.publish());
+      transport::copy_joints(left_home, kJoints, left.state.sample().q_rad());
+      EXPECT_TRUE(left.state.publish());
+      transport::copy_joints(right_home, kJoints, right.state.sample().q_rad());
+      EXPECT_TRUE(right.state.publish());
+    });
+  };
+  for (int i = 0; i < 500 && counter("object_box_accepted") <= 0; ++i) run(1);
+  node->trace_row(row.data());
+  EXPECT_NEAR(row[column("object_box_error_m")], 0.05, 0.005) << "the first measurement finds the box resting";
+  run(50);  // every arm's first samples in, every buffer at size
+  EXPECT_EQ(run(1450), 0u) << "allocations";
+  node->trace_row(row.data());
+  EXPECT_LT(row[column("object_box_error_m")], 0.02) << "lifted towards the measurement";
+  EXPECT_GT(row[column("object_box_force_n")], 5.0) << "holding it against its weight";
+  EXPECT_GT(counter("object_box_accepted"), 1000.0);
+  EXPECT_EQ(counter("object_box_rejected"), 0.0);
+  EXPECT_EQ(counter("mujoco_warnings"), 0.0);
+}
+
+TEST_F(TwinArmsNodeTest, ASampleNamingAnotherBodyPullsNothing) {
+  test::drive_cycles(*node, harness, 300, [&](int) {
+    remote_box.sample().body("crate");  // a publisher on the wrong topic
+    remote_box.sample().header().stamp_ns(system_now_ns());
+    remote_box.sample().world_pose().position_m().z(0.85);
+    remote_box.sample().world_pose().orientation().w(1.0);
+    EXPECT_TRUE(remote_box.publish());
+  });
+  EXPECT_GT(counter("object_box_wrong_body"), 100.0);
+  EXPECT_EQ(counter("object_box_accepted"), 0.0);
+  std::vector<std::string> columns;
+  node->trace_columns(columns);
+  std::vector<double> row(columns.size());
+  node->trace_row(row.data());
+  const size_t force = static_cast<size_t>(std::find(columns.begin(), columns.end(), "object_box_force_n") - columns.begin());
+  ASSERT_LT(force, columns.size());
+  EXPECT_EQ(row[force], 0.0);
 }
 
 TEST_F(TwinArmsNodeTest, NamesTraceColumnsPerArm) {

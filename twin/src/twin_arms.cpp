@@ -36,7 +36,7 @@ std::unique_ptr<runtime::NodeLogic> build_arms(const std::vector<TwinConfig>& ar
   if (arms.size() == 1 && arms.front().arm.empty()) return std::make_unique<TwinNode>(arms.front(), context);
   TwinModelConfig model = arms.front().model;
   for (const TwinConfig& arm : arms) model.joint_prefixes.push_back(arm.joint_prefix);
-  auto scene = std::make_unique<TwinScene>(model, context);
+  auto scene = std::make_unique<TwinScene>(model, arms.front().object_correction, context);
   std::vector<runtime::ArmGroup::Arm> group;
   std::vector<TwinArm*> twin_arms;
   size_t first = 0;
@@ -67,6 +67,9 @@ std::vector<TwinConfig> parse_twin_arms(const ConfigNode& root) {
   const ConfigNode section = root.child("twin");
   const TwinConfig shared = parse_twin_config(root);
   if (section.has("arms")) refuse_one_arm_features(section, shared);
+  if (!section.has("arms") && shared.object_correction) {
+    throw section.error("object_correction", "corrects the shared objects of a twin with arms (twin.arms) only");
+  }
   return runtime::read_arm_configs(section, shared, arm_config);
 }
 

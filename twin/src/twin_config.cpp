@@ -47,6 +47,20 @@ CorrectionConfig read_correction(const ConfigNode& s) {
   return c;
 }
 
+ObjectCorrectionConfig read_object_correction(const ConfigNode& s) {
+  ObjectCorrectionConfig c;
+  c.bodies = s.get_string_list("bodies");
+  if (c.bodies.empty()) throw s.error("bodies", "names no body to correct");
+  c.stiffness_n_per_m = s.get_double("stiffness_n_per_m", Range{0, 1e5}, c.stiffness_n_per_m);
+  c.damping_ns_per_m = s.get_double("damping_ns_per_m", Range{0, 1e4}, c.damping_ns_per_m);
+  c.stiffness_nm_per_rad = s.get_double("stiffness_nm_per_rad", Range{0, 1e4}, c.stiffness_nm_per_rad);
+  c.damping_nms_per_rad = s.get_double("damping_nms_per_rad", Range{0, 1e3}, c.damping_nms_per_rad);
+  c.max_force_n = s.get_double("max_force_n", Range{0, 1e4}, c.max_force_n);
+  c.max_torque_nm = s.get_double("max_torque_nm", Range{0, 1e3}, c.max_torque_nm);
+  c.timeout_s = s.get_double("timeout_ms", Range{1, 60'000}, c.timeout_s * 1e3) * 1e-3;
+  return c;
+}
+
 }  // namespace
 
 TwinConfig parse_twin_config(const ConfigNode& root) {
@@ -71,6 +85,7 @@ TwinConfig parse_twin_config(const ConfigNode& root) {
     c.mmt.damping_nms_per_rad = mmt->get_double("follower_damping_nms_per_rad", Range{0, 1e4}, c.mmt.damping_nms_per_rad);
     if (auto correction = mmt->optional_child("correction")) c.mmt.correction = read_correction(*correction);
   }
+  if (auto objects = s.optional_child("object_correction")) c.object_correction = read_object_correction(*objects);
   if (c.mmt.enabled && (c.mode != TwinMode::kRealtime || c.coupled_to != TwinConfig::CoupledTo::kLeader)) {
     throw s.error("mode", "teleoperation.architecture mmt needs mode: realtime and coupled_to: leader");
   }

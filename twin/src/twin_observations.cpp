@@ -76,9 +76,9 @@ void TwinObservations::trace_columns(std::vector<std::string>& columns) const {
   for (const std::string& pair : distance_names_) columns.push_back("distance_" + pair + "_m");
 }
 
-void TwinObservations::trace_row(double* row) const {
+double* TwinObservations::trace_row(double* row) const {
   row = std::copy(contact_force_n_.begin(), contact_force_n_.end(), row);
-  std::copy(distance_m_.begin(), distance_m_.end(), row);
+  return std::copy(distance_m_.begin(), distance_m_.end(), row);
 }
 
 }  // namespace teleop::twin

@@ -13,6 +13,14 @@
 
 namespace teleop::follower {
 
+/// The remote site's tracking of its objects for the twin (object_pose_feed.h).
+struct ObjectPoseFeedConfig {
+  /// Bodies of the scene to publish, by name; empty: none.
+  std::vector<std::string> bodies;
+  /// Samples per second of each (the loop's rate divided by a whole number of cycles).
+  double rate_hz = 100.0;
+};
+
 struct FollowerConfig {
   /// Which arm of a multi-arm robot this is ("" for a one-arm robot): names its topics
   /// (transport/arm_topic.h).
@@ -34,6 +42,8 @@ struct FollowerConfig {
   ArmControlConfig control;
   /// A two-arm follower on the box scene traces the box task's quantities (box_task_trace.h).
   bool trace_box_task = false;
+  /// Objects of the shared scene whose measured pose goes to the twin (object_pose_feed.h).
+  ObjectPoseFeedConfig tracked_objects;
   /// The architecture the follower plays its part in (absent: a plain follower of `command_source`).
   std::optional<teleoperation::TeleoperationConfig> teleoperation;
 };

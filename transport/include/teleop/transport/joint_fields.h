@@ -1,5 +1,6 @@
 #pragma once
-// Copies between fixed-size joint vectors and the bounded sequences of the samples.
+// Copies between fixed-size joint vectors and the bounded sequences of the samples, and between
+// plain arrays and the samples' vectors and quaternions.
 
 #include <algorithm>
 #include <cstddef>
@@ -24,14 +25,36 @@ inline void copy_joints(const JointVector& in, size_t n, std::vector<double>& ou
   return true;
 }
 
+/// Three numbers (x, y, z) into a Vector3, and back.
+inline void set_vector3(msg::Vector3& out, const double* xyz) {
+  out.x(xyz[0]);
+  out.y(xyz[1]);
+  out.z(xyz[2]);
+}
+inline void read_vector3(const msg::Vector3& in, double* xyz) {
+  xyz[0] = in.x();
+  xyz[1] = in.y();
+  xyz[2] = in.z();
+}
+
+/// Four numbers (w, x, y, z) into a Quaternion, and back.
+inline void set_quaternion(msg::Quaternion& out, const double* wxyz) {
+  out.w(wxyz[0]);
+  out.x(wxyz[1]);
+  out.y(wxyz[2]);
+  out.z(wxyz[3]);
+}
+inline void read_quaternion(const msg::Quaternion& in, double* wxyz) {
+  wxyz[0] = in.w();
+  wxyz[1] = in.x();
+  wxyz[2] = in.y();
+  wxyz[3] = in.z();
+}
+
 /// Writes a force [N] and a moment [N m] (x, y, z each) into a WrenchStamped.
 inline void set_wrench(msg::WrenchStamped& out, const double* force_n, const double* torque_nm) {
-  out.force_n().x(force_n[0]);
-  out.force_n().y(force_n[1]);
-  out.force_n().z(force_n[2]);
-  out.torque_nm().x(torque_nm[0]);
-  out.torque_nm().y(torque_nm[1]);
-  out.torque_nm().z(torque_nm[2]);
+  set_vector3(out.force_n(), force_n);
+  set_vector3(out.torque_nm(), torque_nm);
 }
 
 /// Sizes every sequence of a sample once at setup so that the loop never allocates.

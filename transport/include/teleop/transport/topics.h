@@ -27,6 +27,9 @@ inline constexpr TopicSpec<msg::JointState> kLeaderState{"teleop/leader/joint_st
 // follower robot -> everyone: measured state and estimated external wrench
 inline constexpr TopicSpec<msg::JointState> kFollowerState{"teleop/follower/joint_state", QosPreset::kStream};
 inline constexpr TopicSpec<msg::WrenchStamped> kFollowerWrench{"teleop/follower/wrench", QosPreset::kStream};
+// follower site -> twin: measured pose of a tracked object, one topic per object, named this
+// prefix + the object's name (a stream: the newest pose is what counts)
+inline constexpr const char* kFollowerObjectPosePrefix = "teleop/follower/object_pose/";
 // twin -> leader: rendered constraint torque (haptic feedback) and the twin's own state
 inline constexpr TopicSpec<msg::JointTorque> kTwinFeedback{"teleop/twin/feedback_torque", QosPreset::kStream};
 inline constexpr TopicSpec<msg::JointState> kTwinState{"teleop/twin/joint_state", QosPreset::kStream};

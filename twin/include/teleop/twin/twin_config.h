@@ -7,6 +7,7 @@
 #include "teleop/common/config.h"
 #include "teleop/common/joint_model.h"
 #include "teleop/twin/environment_correction.h"
+#include "teleop/twin/object_correction.h"
 #include "teleop/twin/twin_model_config.h"
 
 namespace teleop::twin {
@@ -74,6 +75,8 @@ struct TwinConfig {
   LockstepConfig lockstep;
   HilConfig hil;
   MmtConfig mmt;
+  /// The remote site's measured objects pull the twin's (twin.arms only; absent: none).
+  std::optional<ObjectCorrectionConfig> object_correction;
 };
 
 /// Reads the `twin:` section of `root`. Throws ConfigError naming file and key.

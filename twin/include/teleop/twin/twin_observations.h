@@ -32,8 +32,8 @@ class TwinObservations {
   void fill_report(runtime::NodeReport& report, const TwinSimulation& sim, bool integrated) const;
   /// contact_<pair>_n (the force's magnitude) per contact pair, distance_<pair>_m per distance pair.
   void trace_columns(std::vector<std::string>& columns) const;
-  /// Their values as last published. Real-time safe.
-  void trace_row(double* row) const;
+  /// Their values as last published; returns the position after them. Real-time safe.
+  double* trace_row(double* row) const;
 
  private:
   transport::Publication<msg::GeomDistances> distances_pub_;

@@ -6,7 +6,11 @@
 // is the unnamed member of the twin's ArmGroup: its report keeps the one-arm twin's names
 // (sim_time_s, rt_factor, mujoco_warnings, ...). Setup allocates and throws; the rest does not.
 
+#include <memory>
+#include <optional>
+
 #include "teleop/runtime/node_runner.h"
+#include "teleop/twin/object_tracking.h"
 #include "teleop/twin/twin_model_config.h"
 #include "teleop/twin/twin_observations.h"
 #include "teleop/twin/twin_simulation.h"
@@ -15,8 +19,10 @@ namespace teleop::twin {
 
 class TwinScene final : public runtime::NodeLogic {
  public:
-  /// Loads `model` (throws std::runtime_error naming the file) at the loop's period.
-  TwinScene(const TwinModelConfig& model, runtime::NodeContext& context);
+  /// Loads `model` (throws std::runtime_error naming the file) at the loop's period; with
+  /// `objects`, the remote site's measurements of those bodies pull the twin's (ObjectTracking).
+  TwinScene(const TwinModelConfig& model, const std::optional<ObjectCorrectionConfig>& objects,
+            runtime::NodeContext& context);
 
   /// The coupling targets of every driven joint, each arm's at its own offset. Between steps.
   JointVector& targets() { return targets_; }
@@ -30,15 +36,17 @@ class TwinScene final : public runtime::NodeLogic {
   /// The arms report their own states; the scene itself is always running.
   msg::NodeState state() const override { return msg::STATE_RUNNING; }
   void active_faults(std::vector<uint32_t>&) const override {}
-  void fill_report(runtime::NodeReport& report) const override { observations_.fill_report(report, sim_, true); }
-  /// The contact forces and distances of the configured pairs (model.contact_pairs, distance_pairs).
-  void trace_columns(std::vector<std::string>& columns) const override { observations_.trace_columns(columns); }
-  void trace_row(double* row) const override { observations_.trace_row(row); }
+  void fill_report(runtime::NodeReport& report) const override;
+  /// The contact forces and distances of the configured pairs (model.contact_pairs,
+  /// distance_pairs), then each corrected object's error and pull.
+  void trace_columns(std::vector<std::string>& columns) const override;
+  void trace_row(double* row) const override;
 
  private:
   TwinSimulation sim_;
   TwinObservations observations_;
   JointVector targets_;
+  std::unique_ptr<ObjectTracking> objects_;
 };
 
 }  // namespace teleop::twin
