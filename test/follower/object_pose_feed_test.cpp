@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <sstream>
+#include <string>
 
 #include "allocation_counter.h"
 #include "node_harness.h"
@@ -20,12 +20,14 @@ namespace {
 
 const std::string kBoxTaskFile = std::string(TELEOP_SOURCE_DIR) + "/config/nodes/follower_box_task.yaml";
 
-// the box task's follower config with `extra` follower keys (paths resolve next to the real file)
+// the box task's follower config with `extra` follower keys in place of its tracked_object* keys
+// (paths resolve next to the real file)
 ConfigNode box_task_config(const std::string& extra) {
   std::ifstream in(kBoxTaskFile);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string yaml = text.str();
+  std::string yaml;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("  tracked_object", 0) != 0) yaml += line + "\n";
+  }
   const std::string anchor = "  trace_box_task: true";
   yaml.replace(yaml.find(anchor), anchor.size(), anchor + "\n" + extra);
   return ConfigNode::load_string(yaml, kBoxTaskFile);
