@@ -6,6 +6,7 @@
 #include <map>
 #include <mutex>
 #include <sstream>
+#include <stdexcept>
 
 #include "node_harness.h"
 #include "process_helpers.h"
@@ -96,13 +97,22 @@ TEST(TwinLockstep, ReportsAStalledControllerWithinTheTimeout) {
   EXPECT_LT(reported_after_s, 1.5);
 }
 
+// follower.yaml as a plain follower of the twin's commands: hardware in the loop is no
+// teleoperation architecture, so its whole teleoperation section goes (up to the blank line)
+std::string hil_follower_config(const std::string& dir) {
+  const std::string path = config_copy(dir, "follower.yaml", {{"\nfollower:\n", "\nfollower:\n  command_source: twin\n"}});
+  std::string text = read_file(path);
+  const size_t begin = text.find("\nteleoperation:\n");
+  if (begin == std::string::npos) throw std::runtime_error("follower.yaml changed: no teleoperation section");
+  text.erase(begin + 1, text.find("\n\n", begin + 1) - begin);
+  write_file(path, text);
+  return path;
+}
+
 TEST(TwinHil, FollowerReachesTheGoalOfTheTwinsController) {
   const std::string dir = make_temp_dir();
   const std::string twin_config = config_copy(dir, "twin_hil.yaml", {});
-  const std::string follower_config =
-      config_copy(dir, "follower.yaml",
-                  // hardware in the loop is no teleoperation architecture: the follower just takes the twin's commands
-                  {{"teleoperation:\n  architecture: position_position\n", ""}, {"follower:\n", "follower:\n  command_source: twin\n"}});
+  const std::string follower_config = hil_follower_config(dir);
   const std::string domain = std::to_string(unique_domain());
   RunningProcess follower(
       {bin("teleop_follower"), "-c", follower_config, "--domain", domain, "-d", "5", "-r", dir + "/follower.yaml"});
