@@ -18,11 +18,14 @@ DriftCompensator::DriftCompensator(const DriftCompensationConfig& config) : conf
     if (!(config.max_speed[i] > 0.0)) {
       throw std::invalid_argument("drift compensation: max_speed of channel " + std::to_string(i) + " must be > 0");
     }
+    if (!(config.contact_force[i] > 0.0)) {
+      throw std::invalid_argument("drift compensation: contact_force of channel " + std::to_string(i) + " must be > 0");
+    }
   }
 }
 
-double DriftCompensator::request(std::size_t channel, double v) const {
-  if (config_.time_constant_s <= 0.0) return v;
+double DriftCompensator::request(std::size_t channel, double v, double f) const {
+  if (config_.time_constant_s <= 0.0 || std::abs(f) > config_.contact_force[channel]) return v;
   const double limit = config_.max_speed[channel];
   return v - std::clamp(drift_[channel] / config_.time_constant_s, -limit, limit);
 }

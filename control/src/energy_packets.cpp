@@ -37,7 +37,8 @@ PacketVerdict RemoteEnergy::receive(const EnergyPacket& packet) {
     ++counters_.invalid;
     return PacketVerdict::kInvalid;
   }
-  counters_.missed += packet.seq - last_seq_ - 1;
+  // the first packet after a reset: the sender's numbers before it belong to another session
+  if (last_seq_ != 0) counters_.missed += packet.seq - last_seq_ - 1;
   ++counters_.accepted;
   last_seq_ = packet.seq;
   for (std::size_t i = 0; i < channels_; ++i) {

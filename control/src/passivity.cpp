@@ -114,14 +114,31 @@ const EnergyPacket& PassivityPort::make_packet() {
   return packet_;
 }
 
-void PassivityPort::reset() {
+PacketVerdict PassivityPort::receive(const EnergyPacket& packet) {
+  if (packet.session < session_) {
+    ++counters_.old_session_packets;
+    return PacketVerdict::kStale;
+  }
+  if (packet.session > session_) {
+    // the other end lost this one and started afresh: so does this end, or its totals (now
+    // restarting from zero) would look like a decrease and be refused until they passed the old
+    ++counters_.remote_restarts;
+    start_session(packet.session);
+  }
+  return remote_.receive(packet);
+}
+
+void PassivityPort::start_session(std::uint32_t session) {
+  session_ = session;
   remote_.reset();
-  state_.fill(ChannelState{});
-  min_observed_j_ = 0.0;
+  for (ChannelState& s : state_) {
+    // what was dissipated stays dissipated: it is a report, not bookkeeping
+    s = ChannelState{0.0, 0.0, s.dissipated_j, 0.0};
+  }
   packet_.seq = 0;
+  packet_.session = session;
   packet_.energy_in_j.fill(0.0);
   packet_.energy_out_j.fill(0.0);
-  counters_ = Counters{};
 }
 
 }  // namespace teleop::control

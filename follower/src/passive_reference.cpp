@@ -13,6 +13,8 @@ control::DriftCompensationConfig drift_config(const teleoperation::TdpaSettings&
   for (size_t i = 0; i < 3; ++i) {
     c.max_speed[i] = settings.drift_max_speed_m_per_s;
     c.max_speed[i + 3] = settings.drift_max_speed_rad_per_s;
+    c.contact_force[i] = settings.drift_contact_force_n;
+    c.contact_force[i + 3] = settings.drift_contact_torque_nm;
   }
   return c;
 }
@@ -31,7 +33,7 @@ void PassiveReference::apply(const ValidCommand& command, const control::Vector6
   // the port's force is what crosses the channel back to the leader: the estimated external
   // wrench (the environment on the robot), positive along v when the environment pushes with it
   for (size_t i = 0; i < 6; ++i) f[i] = wrench[static_cast<Eigen::Index>(i)];
-  for (size_t i = 0; i < 6; ++i) v_requested[i] = drift_.request(i, command.twist_des[i]);
+  for (size_t i = 0; i < 6; ++i) v_requested[i] = drift_.request(i, command.twist_des[i], f[i]);
   (void)link_->update(f, v_requested, v_out);
   link_->publish();
   for (size_t i = 0; i < 6; ++i) {
@@ -48,10 +50,7 @@ void PassiveReference::apply(const ValidCommand& command, const control::Vector6
   }
 }
 
-void PassiveReference::reset() {
-  link_->reset();
-  drift_.reset();
-}
+void PassiveReference::reset() { link_->reset(); }
 
 double PassiveReference::position_drift_m() const {
   return Eigen::Vector3d(drift_.drift(0), drift_.drift(1), drift_.drift(2)).norm();

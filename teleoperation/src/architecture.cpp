@@ -46,6 +46,10 @@ std::optional<TeleoperationConfig> parse_teleoperation_config(const ConfigNode& 
         tdpa->get_double("drift_max_speed_m_per_s", Range{1e-6, 10}, c.tdpa.drift_max_speed_m_per_s);
     c.tdpa.drift_max_speed_rad_per_s =
         tdpa->get_double("drift_max_speed_rad_per_s", Range{1e-6, 10}, c.tdpa.drift_max_speed_rad_per_s);
+    c.tdpa.drift_contact_force_n =
+        tdpa->get_double("drift_contact_force_n", Range{1e-3, 1e4}, c.tdpa.drift_contact_force_n);
+    c.tdpa.drift_contact_torque_nm =
+        tdpa->get_double("drift_contact_torque_nm", Range{1e-3, 1e4}, c.tdpa.drift_contact_torque_nm);
   }
   return c;
 }

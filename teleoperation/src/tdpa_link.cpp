@@ -41,6 +41,7 @@ void TdpaLink::receive() {
   const msg::TdpaEnergy& m = in_.latest();
   // a packet of another channel count is invalid: RemoteEnergy rejects it by its count
   received_.seq = m.header().seq();
+  received_.session = m.session();
   received_.channels = m.energy_in_j().size();
   const std::size_t n = std::min(received_.channels, control::kMaxTdpaChannels);
   std::copy_n(m.energy_in_j().begin(), n, received_.energy_in_j.begin());
@@ -58,6 +59,7 @@ void TdpaLink::publish() {
   auto& m = out_.sample();
   std::copy_n(p.energy_in_j.begin(), p.channels, m.energy_in_j().begin());
   std::copy_n(p.energy_out_j.begin(), p.channels, m.energy_out_j().begin());
+  m.session(p.session);
   // the header's sequence number is the packet's: Publication numbers every sample it sends
   out_.publish();
 }
@@ -81,6 +83,8 @@ void TdpaLink::fill_report(runtime::NodeReport& report) const {
   report.counters.emplace_back("tdpa_non_finite_inputs", static_cast<double>(c.non_finite_inputs));
   report.counters.emplace_back("tdpa_packets_missed", static_cast<double>(port_.remote().counters().missed));
   report.counters.emplace_back("tdpa_packets_invalid", static_cast<double>(invalid_packets_));
+  report.counters.emplace_back("tdpa_session", static_cast<double>(port_.session()));
+  report.counters.emplace_back("tdpa_remote_restarts", static_cast<double>(c.remote_restarts));
 }
 
 }  // namespace teleop::teleoperation

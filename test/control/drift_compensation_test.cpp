@@ -30,7 +30,7 @@ TEST(DriftCompensator, TracksTheDriftAsTheIntegralOfWhatTheControllerTookAway) {
   EXPECT_NEAR(d.drift(0), -1e-4, 1e-15);
   EXPECT_NEAR(d.drift(1), 1e-4, 1e-15);
   // without a time constant nothing is asked back
-  EXPECT_EQ(d.request(0, 0.2), 0.2);
+  EXPECT_EQ(d.request(0, 0.2, 0.0), 0.2);
   d.reset();
   EXPECT_EQ(d.drift(0), 0.0);
   EXPECT_EQ(d.drift(1), 0.0);
@@ -40,8 +40,21 @@ TEST(DriftCompensator, AsksTheDriftBackWithItsTimeConstantUpToTheSpeedLimit) {
   DriftCompensator d(config(0.5, 0.1));
   d.account(0, 0.0, -0.02, 1.0);  // drift -0.02 m
   d.account(1, 0.0, 1.0, 1.0);    // drift +1 m
-  EXPECT_NEAR(d.request(0, 0.3), 0.3 + 0.02 / 0.5, 1e-12);
-  EXPECT_NEAR(d.request(1, 0.3), 0.3 - 0.1, 1e-12);  // 2 m/s asked, 0.1 m/s allowed
+  EXPECT_NEAR(d.request(0, 0.3, 0.0), 0.3 + 0.02 / 0.5, 1e-12);
+  EXPECT_NEAR(d.request(1, 0.3, 0.0), 0.3 - 0.1, 1e-12);  // 2 m/s asked, 0.1 m/s allowed
+}
+
+TEST(DriftCompensator, LetsAChannelInContactKeepItsDrift) {
+  DriftCompensationConfig c = config(0.5, 0.1);
+  c.contact_force = {3.0, 0.5};  // N on channel 0, N m on channel 1
+  DriftCompensator d(c);
+  d.account(0, 0.0, -0.02, 1.0);
+  d.account(1, 0.0, -0.02, 1.0);
+  EXPECT_EQ(d.request(0, 0.3, 9.0), 0.3) << "pressed on a wall with 9 N: the drift waits";
+  EXPECT_EQ(d.request(0, 0.3, -3.5), 0.3) << "either direction";
+  EXPECT_NEAR(d.request(0, 0.3, 2.5), 0.3 + 0.04, 1e-12) << "below the threshold: free motion";
+  EXPECT_EQ(d.request(1, 0.3, 0.6), 0.3);
+  EXPECT_NEAR(d.request(1, 0.3, 0.4), 0.3 + 0.04, 1e-12);
 }
 
 TEST(DriftCompensator, ReturnsTheDriftExponentiallyWhenTheControllerLetsItThrough) {
@@ -49,7 +62,7 @@ TEST(DriftCompensator, ReturnsTheDriftExponentiallyWhenTheControllerLetsItThroug
   DriftCompensator d(config(tau, 10.0));
   d.account(0, 0.0, 0.05, 1.0);  // drift +0.05 m
   for (int k = 0; k < 200; ++k) {
-    const double v_out = d.request(0, 0.0);  // a controller with energy to spare passes it
+    const double v_out = d.request(0, 0.0, 0.0);  // a controller with energy to spare passes it
     d.account(0, 0.0, v_out, h);
   }
   EXPECT_NEAR(d.drift(0), 0.05 * std::exp(-1.0), 2e-4);  // one time constant
@@ -67,6 +80,9 @@ TEST(DriftCompensator, RejectsBadConfigurationNamingTheField) {
   EXPECT_NE(message(config(-1.0, 1.0)).find("time_constant_s"), std::string::npos);
   EXPECT_NE(message(config(std::numeric_limits<double>::quiet_NaN(), 1.0)).find("time_constant_s"), std::string::npos);
   EXPECT_NE(message(config(0.5, 0.0)).find("max_speed"), std::string::npos);
+  auto no_contact = config(0.5, 1.0);
+  no_contact.contact_force[1] = 0.0;
+  EXPECT_NE(message(no_contact).find("contact_force of channel 1"), std::string::npos);
   auto none = config(0.5, 1.0);
   none.channels = 0;
   EXPECT_NE(message(none).find("channels"), std::string::npos);

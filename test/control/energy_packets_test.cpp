@@ -71,6 +71,12 @@ TEST(RemoteEnergy, ResetStartsANewSession) {
   EXPECT_EQ(remote.energy_in_j(0), 0.0);
   EXPECT_EQ(remote.counters().accepted, 0u);
   EXPECT_EQ(remote.receive(packet(1, 0.1, 0.1)), PacketVerdict::kAccepted);
+  // a sender whose numbers go on across sessions (the bus header's): nothing missed at the start
+  remote.reset();
+  EXPECT_EQ(remote.receive(packet(500, 0.1, 0.1)), PacketVerdict::kAccepted);
+  EXPECT_EQ(remote.counters().missed, 0u);
+  EXPECT_EQ(remote.receive(packet(502, 0.2, 0.2)), PacketVerdict::kAccepted);
+  EXPECT_EQ(remote.counters().missed, 1u);
 }
 
 TEST(RemoteEnergy, RejectsAChannelCountOutOfRange) {

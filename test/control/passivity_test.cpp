@@ -147,8 +147,44 @@ TEST(PassivityPort, PacketsCarryCumulativeTotalsWithConsecutiveSequenceNumbers) 
   EXPECT_EQ(p.channels, 1u);
   EXPECT_DOUBLE_EQ(p.energy_in_j[0], 4e-3);
   port.reset();
-  EXPECT_EQ(port.make_packet().seq, 1u);
+  const EnergyPacket& after = port.make_packet();
+  EXPECT_EQ(after.seq, 1u);
+  EXPECT_EQ(after.session, 1u);
   EXPECT_EQ(port.energy_in_j(0), 0.0);
+}
+
+TEST(PassivityPort, AnEndThatRestartsRestartsTheOtherEndWithIt) {
+  PassivityPort leader(one_channel(PortCausality::kForceOutput));
+  PassivityPort follower(one_channel(PortCausality::kVelocityOutput));
+  // a session's worth of energy both ways
+  (void)step(leader, 2.0, 1.0);
+  (void)step(follower, 2.0, 1.0);
+  ASSERT_EQ(follower.receive(leader.make_packet()), PacketVerdict::kAccepted);
+  ASSERT_EQ(leader.receive(follower.make_packet()), PacketVerdict::kAccepted);
+  EXPECT_GT(leader.remote_energy_in_j(0), 0.0);
+  // the follower lost the leader for a moment and starts afresh
+  follower.reset();
+  // a leader packet sent before the leader heard of it is from the old session: ignored
+  (void)step(leader, 2.0, 1.0);
+  EXPECT_EQ(follower.receive(leader.make_packet()), PacketVerdict::kStale);
+  EXPECT_EQ(follower.remote_energy_in_j(0), 0.0);
+  EXPECT_EQ(follower.counters().old_session_packets, 1u);
+  // the follower's first packet of the new session carries small totals: accepted, and the
+  // leader restarts its own bookkeeping instead of refusing them as a decrease
+  (void)step(follower, 1.0, 1.0);
+  EXPECT_EQ(leader.receive(follower.make_packet()), PacketVerdict::kAccepted);
+  EXPECT_EQ(leader.session(), 1u);
+  EXPECT_EQ(leader.counters().remote_restarts, 1u);
+  EXPECT_EQ(leader.energy_in_j(0), 0.0);
+  EXPECT_DOUBLE_EQ(leader.remote_energy_in_j(0), 1e-3);
+  EXPECT_EQ(leader.remote().counters().invalid, 0u);
+  // and from now on both count the same session
+  (void)step(leader, 3.0, 1.0);
+  const EnergyPacket& p = leader.make_packet();
+  EXPECT_EQ(p.session, 1u);
+  EXPECT_EQ(p.seq, 1u);
+  EXPECT_EQ(follower.receive(p), PacketVerdict::kAccepted);
+  EXPECT_DOUBLE_EQ(follower.remote_energy_in_j(0), 3e-3);
 }
 
 TEST(PassivityPort, RejectsBadConfigurationNamingTheField) {

@@ -208,7 +208,7 @@ LoopResult run_loop(const LoopParams& p, Audit&& audit) {
       f_track[j] = p.tracking_stiffness_npm * (x_d[j] - x_f[j]);
       ff[j] = -f_track[j];
     }
-    for (std::size_t j = 0; j < kLoopDof; ++j) fv[j] = drift.request(j, velocity_rx[j]);
+    for (std::size_t j = 0; j < kLoopDof; ++j) fv[j] = drift.request(j, velocity_rx[j], ff[j]);
     (void)follower.update(ff, fv, fv_out);
     for (std::size_t j = 0; j < kLoopDof; ++j) drift.account(j, velocity_rx[j], fv_out[j], h);
     audit(CycleView{k, leader, follower, lf, lv, lf_out, ff, fv, fv_out});

@@ -43,12 +43,15 @@ TEST(TeleoperationConfig, DefaultsToUnlimitedDampersAndNoDriftCompensation) {
 TEST(TeleoperationConfig, ReadsTheTdpaSettings) {
   const auto c = parse(
       "teleoperation:\n  architecture: pfc_tdpa\n  tdpa:\n    max_leader_damping: 0\n    max_follower_damping: 0.5\n"
-      "    drift_time_constant_s: 0.4\n    drift_max_speed_m_per_s: 0.03\n    drift_max_speed_rad_per_s: 0.1\n");
+      "    drift_time_constant_s: 0.4\n    drift_max_speed_m_per_s: 0.03\n    drift_max_speed_rad_per_s: 0.1\n"
+      "    drift_contact_force_n: 4\n    drift_contact_torque_nm: 0.8\n");
   EXPECT_TRUE(std::isinf(c->tdpa.max_leader_damping));  // 0 in the file: no limit
   EXPECT_EQ(c->tdpa.max_follower_damping, 0.5);
   EXPECT_EQ(c->tdpa.drift_time_constant_s, 0.4);
   EXPECT_EQ(c->tdpa.drift_max_speed_m_per_s, 0.03);
   EXPECT_EQ(c->tdpa.drift_max_speed_rad_per_s, 0.1);
+  EXPECT_EQ(c->tdpa.drift_contact_force_n, 4.0);
+  EXPECT_EQ(c->tdpa.drift_contact_torque_nm, 0.8);
 }
 
 TEST(TeleoperationConfig, NamesFileAndKeyOfABadValue) {

@@ -22,6 +22,9 @@ inline constexpr std::size_t kMaxTdpaChannels = 16;
 struct EnergyPacket {
   /// Per-sender sequence number, first packet 1.
   std::uint64_t seq = 0;
+  /// The sender's session (PassivityPort::reset): a newer one than the receiver's restarts the
+  /// receiver's bookkeeping too, an older one is a packet still in flight from before.
+  std::uint32_t session = 0;
   std::size_t channels = 0;
   /// Energy that entered the channel at the sender's port (power f v > 0), per channel.
   std::array<double, kMaxTdpaChannels> energy_in_j{};
@@ -48,7 +51,7 @@ class RemoteEnergy {
     std::uint64_t stale = 0;
     std::uint64_t invalid = 0;
     /// Sequence numbers skipped between accepted packets: packets never used (lost, or arrived
-    /// after a newer one).
+    /// after a newer one). Counted from the first packet accepted after a reset.
     std::uint64_t missed = 0;
   };
 

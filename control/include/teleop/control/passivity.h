@@ -100,13 +100,19 @@ class PassivityPort {
     std::uint64_t non_finite_inputs = 0;
     /// update() calls rejected for a span of the wrong size.
     std::uint64_t size_mismatches = 0;
+    /// Sessions the other end started (its packets' newer session restarted this end).
+    std::uint64_t remote_restarts = 0;
+    /// Packets of a session this end has left (in flight across a reset): ignored.
+    std::uint64_t old_session_packets = 0;
   };
 
   /// Throws std::invalid_argument naming the bad field.
   explicit PassivityPort(const PassivityPortConfig& config);
 
-  /// An energy packet from the other port (any rate, any order; see RemoteEnergy).
-  [[nodiscard]] PacketVerdict receive(const EnergyPacket& packet) { return remote_.receive(packet); }
+  /// An energy packet from the other port (any rate, any order; see RemoteEnergy). A packet of a
+  /// newer session than this end's restarts this end first (both ends always reset together,
+  /// whichever noticed the loss); one of an older session is ignored as kStale.
+  [[nodiscard]] PacketVerdict receive(const EnergyPacket& packet);
 
   /// One cycle: `force` and `velocity` per channel in the sign convention above; writes the
   /// corrected output (force or velocity by causality) to `corrected`, which may alias the
@@ -117,12 +123,15 @@ class PassivityPort {
   /// The packet to send after this cycle's update(): this port's totals, the next sequence number.
   const EnergyPacket& make_packet();
 
-  /// New session: all energies, counters and sequence numbers back to zero (both sides together).
-  void reset();
+  /// This end starts a new session (it lost the other end): energies and sequence numbers back
+  /// to zero; its next packet tells the other end to do the same. Counters are kept.
+  void reset() { start_session(session_ + 1); }
+  /// The session this end is in (0 until a reset on either end).
+  std::uint32_t session() const { return session_; }
 
   /// W [J] of `channel` after the last update: E_in^remote - E_out.
   double observed_energy_j(std::size_t channel) const { return remote_.energy_in_j(channel) - state_[channel].out_j; }
-  /// The smallest W [J] of any channel after any update since reset (0 before the first).
+  /// The smallest W [J] of any channel after any update, over all sessions (0 before the first).
   double min_observed_energy_j() const { return min_observed_j_; }
   double energy_in_j(std::size_t channel) const { return state_[channel].in_j; }
   double energy_out_j(std::size_t channel) const { return state_[channel].out_j; }
@@ -145,6 +154,8 @@ class PassivityPort {
 
   /// One channel's bookkeeping and correction; returns the corrected output. Sets `saturated`.
   double update_channel(std::size_t i, double f, double v, bool& saturated);
+  /// Energies, the remote totals and the packet numbering back to zero, in `session`.
+  void start_session(std::uint32_t session);
 
   PassivityPortConfig config_;
   RemoteEnergy remote_;
@@ -152,6 +163,7 @@ class PassivityPort {
   double min_observed_j_ = 0.0;
   EnergyPacket packet_;
   Counters counters_;
+  std::uint32_t session_ = 0;
 };
 
 }  // namespace teleop::control

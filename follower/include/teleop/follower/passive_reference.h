@@ -24,7 +24,10 @@ class PassiveReference {
   /// Corrects `command` (Cartesian, as received) into `corrected` given this cycle's estimated
   /// external wrench (base frame, the one published to the leader); sends this end's energy packet.
   void apply(const ValidCommand& command, const control::Vector6& wrench, ValidCommand& corrected);
-  /// A new session (the command source was lost): energies and drift back to zero.
+  /// A new session (the command source was lost): energies back to zero. The drift stays: it is
+  /// where the reference is relative to the leader's commands, and dropping it would move the
+  /// reference by all of it at once (into a wall the follower rests on: a force step). It is
+  /// returned as before, in free motion, as the new session's energy allows.
   void reset();
 
   /// |drift| of the position [m] and of the rotation [rad].

@@ -33,6 +33,10 @@ struct TdpaSettings {
   double drift_time_constant_s = 0.0;
   double drift_max_speed_m_per_s = 0.05;
   double drift_max_speed_rad_per_s = 0.2;
+  /// A Cartesian channel whose estimated external force [N] / torque [N m] exceeds this is in
+  /// contact: its drift waits (free motion only).
+  double drift_contact_force_n = 3.0;
+  double drift_contact_torque_nm = 0.5;
 };
 
 struct TeleoperationConfig {

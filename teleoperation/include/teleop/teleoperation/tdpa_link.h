@@ -34,7 +34,8 @@ class TdpaLink {
                              std::span<double> corrected);
   /// Sends this end's totals.
   void publish();
-  /// New session (the other end restarted or was lost): energies back to zero.
+  /// This end lost the other one: a new session, energies back to zero; the other end follows
+  /// when it receives this end's next packet (PassivityPort::receive).
   void reset() { port_.reset(); }
 
   const control::PassivityPort& port() const { return port_; }
