@@ -25,9 +25,12 @@ DriftCompensator::DriftCompensator(const DriftCompensationConfig& config) : conf
 }
 
 double DriftCompensator::request(std::size_t channel, double v, double f) const {
-  if (config_.time_constant_s <= 0.0 || std::abs(f) > config_.contact_force[channel]) return v;
+  if (config_.time_constant_s <= 0.0) return v;
   const double limit = config_.max_speed[channel];
-  return v - std::clamp(drift_[channel] / config_.time_constant_s, -limit, limit);
+  const double back = -std::clamp(drift_[channel] / config_.time_constant_s, -limit, limit);
+  // in contact, a return against the environment's push would press harder than commanded: wait
+  if (std::abs(f) > config_.contact_force[channel] && back * f < 0.0) return v;
+  return v + back;
 }
 
 }  // namespace teleop::control

@@ -44,17 +44,18 @@ TEST(DriftCompensator, AsksTheDriftBackWithItsTimeConstantUpToTheSpeedLimit) {
   EXPECT_NEAR(d.request(1, 0.3, 0.0), 0.3 - 0.1, 1e-12);  // 2 m/s asked, 0.1 m/s allowed
 }
 
-TEST(DriftCompensator, LetsAChannelInContactKeepItsDrift) {
+TEST(DriftCompensator, NeverReturnsTheDriftIntoAContact) {
   DriftCompensationConfig c = config(0.5, 0.1);
   c.contact_force = {3.0, 0.5};  // N on channel 0, N m on channel 1
   DriftCompensator d(c);
+  // both references lag 2 cm behind: the return goes + (0.04 m/s)
   d.account(0, 0.0, -0.02, 1.0);
   d.account(1, 0.0, -0.02, 1.0);
-  EXPECT_EQ(d.request(0, 0.3, 9.0), 0.3) << "pressed on a wall with 9 N: the drift waits";
-  EXPECT_EQ(d.request(0, 0.3, -3.5), 0.3) << "either direction";
-  EXPECT_NEAR(d.request(0, 0.3, 2.5), 0.3 + 0.04, 1e-12) << "below the threshold: free motion";
-  EXPECT_EQ(d.request(1, 0.3, 0.6), 0.3);
-  EXPECT_NEAR(d.request(1, 0.3, 0.4), 0.3 + 0.04, 1e-12);
+  EXPECT_EQ(d.request(0, 0.3, -9.0), 0.3) << "a wall pushes back with 9 N: returning would press harder";
+  EXPECT_NEAR(d.request(0, 0.3, 9.0), 0.3 + 0.04, 1e-12) << "a push along the return: it eases the contact";
+  EXPECT_NEAR(d.request(0, 0.3, -2.5), 0.3 + 0.04, 1e-12) << "below the threshold: free motion";
+  EXPECT_EQ(d.request(1, 0.3, -0.6), 0.3);
+  EXPECT_NEAR(d.request(1, 0.3, -0.4), 0.3 + 0.04, 1e-12);
 }
 
 TEST(DriftCompensator, ReturnsTheDriftExponentiallyWhenTheControllerLetsItThrough) {

@@ -55,7 +55,7 @@ TEST_F(PassiveReferenceTest, HoldsBackAMotionAgainstTheEnvironmentAsDrift) {
 
 TEST_F(PassiveReferenceTest, KeepsTheDriftWhileInContactAndReturnsItInFreeMotion) {
   run(100, 0.1, -5.0);
-  // at rest against the environment (5 N > 3 N): in contact, the drift waits
+  // at rest against the environment (5 N > 3 N): returning (+x) would press into it, the drift waits
   run(500, 0.0, -5.0);
   EXPECT_NEAR(reference.position_drift_m(), 0.01, 1e-9);
   // free (no push): the request passes without energy (f v = 0) and the drift comes back

@@ -13,16 +13,12 @@ using Vector3 = Eigen::Vector3d;
 Vector3 vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
 Eigen::Quaterniond quat(const std::array<double, 4>& q) { return {q[0], q[1], q[2], q[3]}; }
 
+bool all_finite(const std::array<double, 3>& a) {
+  return std::all_of(a.begin(), a.end(), [](double v) { return std::isfinite(v); });
+}
+
 bool finite(const sim::BodyState& s) {
-  for (double v : s.position_m) {
-    if (!std::isfinite(v)) return false;
-  }
-  for (double v : s.linear_mps) {
-    if (!std::isfinite(v)) return false;
-  }
-  for (double v : s.angular_radps) {
-    if (!std::isfinite(v)) return false;
-  }
+  if (!all_finite(s.position_m) || !all_finite(s.linear_mps) || !all_finite(s.angular_radps)) return false;
   const double norm = quat(s.orientation_wxyz).norm();
   // a tracker's quaternion is unit to its float precision; anything else is not an orientation
   return std::isfinite(norm) && std::abs(norm - 1.0) < 1e-3;

@@ -12,11 +12,11 @@
 // channel has energy to spare (W > 0) and waits while it has none. The drift is always measured
 // against the uncompensated v, so what the compensation returns is taken off it.
 //
-// Only in free motion: while a channel's port force (the environment's push on the robot) is
-// above its contact threshold, that channel's drift waits. In contact the operator controls a
-// force, not a position; returning the drift there spends the observed energy on pressing harder
-// than the operator commanded, and leaves the leader none to render the rise (on the stiff wall
-// under 35 ms: felt 1-2 N below exerted; gated: within 2 mN, docs/tdpa.md).
+// Never into a contact: while a channel's port force (the environment's push on the robot) is
+// above its contact threshold, a return against that push waits (one away from it goes on). In
+// contact the operator controls a force, not a position; returning the drift into it spends the
+// observed energy on pressing harder than before, and leaves the leader none to render the rise
+// (docs/tdpa.md, "Drift compensation").
 //
 // request() and account() are real-time safe.
 
@@ -35,8 +35,8 @@ struct DriftCompensationConfig {
   double time_constant_s = 0.0;
   /// Largest compensating speed per channel (m/s or rad/s), > 0; infinity: none.
   std::array<double, kMaxTdpaChannels> max_speed{};
-  /// |port force| (N or N m) above which a channel is in contact and its drift waits, > 0;
-  /// infinity: always compensate.
+  /// |port force| (N or N m) above which a channel is in contact: a return against the force
+  /// waits, > 0; infinity: always compensate.
   std::array<double, kMaxTdpaChannels> contact_force = filled(std::numeric_limits<double>::infinity());
 
  private:
@@ -53,7 +53,7 @@ class DriftCompensator {
   explicit DriftCompensator(const DriftCompensationConfig& config);
 
   /// The velocity to hand to the passivity controller in place of the received `v` on `channel`,
-  /// whose port force is `f` (v itself while |f| is above the contact threshold).
+  /// whose port force is `f` (v itself while a return would press into a contact).
   double request(std::size_t channel, double v, double f) const;
   /// After the controller: the received `v`, what it let through `v_out`, over one cycle `h_s`.
   void account(std::size_t channel, double v, double v_out, double h_s) {
