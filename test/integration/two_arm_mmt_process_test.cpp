@@ -80,9 +80,10 @@ TEST(TwoArmMmtProcesses, EachFollowerArmTracksItsTwinArmAndEachTwinArmItsLeaderA
   EXPECT_EQ(published(twin, "teleop/twin/joint_state/left"), published(twin, "teleop/twin/joint_state/right"));
   EXPECT_EQ(published(twin, "teleop/twin/joint_command"), 0u) << "no arm on the one-arm topic";
   EXPECT_EQ(counter(twin, "mujoco_warnings"), 0.0);
-  // MMT's object update: the follower's box measured at 100 Hz pulls the twin's
-  EXPECT_GT(published(follower, "teleop/follower/object_pose/box"), 400u);
-  EXPECT_GT(counter(twin, "object_box_accepted"), 400.0);
+  // MMT's object update: the follower's box, measured every 10th cycle (100 Hz at full rate, about
+  // half that in the sanitizer build), pulls the twin's
+  EXPECT_GT(published(follower, "teleop/follower/object_pose/box"), 150u);
+  EXPECT_GT(counter(twin, "object_box_accepted"), 150.0);
   EXPECT_EQ(counter(twin, "object_box_rejected"), 0.0);
 
   // both arms keep running while the leader runs (when the launcher stops the nodes, the twin
