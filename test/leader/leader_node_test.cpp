@@ -71,13 +71,20 @@ TEST_F(LeaderNodeTest, StreamsTheScriptedMotionAsJointImpedanceCommands) {
 }
 
 TEST_F(LeaderNodeTest, StartsAtHomeWithoutAStep) {
-  step(true);
+  // cycle until the follower hears a command: the first one, unless this loaded machine's
+  // discovery let the node's writer match a few cycles after the follower's reader did
   ASSERT_TRUE(test::eventually([&] {
+    step(true);
     follower.command.poll();
     return follower.command.has_sample();
   }));
-  ASSERT_EQ(follower.command.latest().header().seq(), 1u);
-  for (double q : follower.command.latest().q_des_rad()) EXPECT_EQ(q, 0.0) << "home, although joints start out of phase";
+  const auto& cmd = follower.command.latest();
+  ASSERT_LE(cmd.header().seq(), 100u) << "the commands flow from the start";
+  // home (0) at the first cycle, then fading in over ramp_s = 1 s: never a step, although the
+  // joints' sines start out of phase
+  const double t = static_cast<double>(cmd.header().seq() - 1) * 1e-3;
+  const double envelope = t * t * (3 - 2 * t);
+  for (double q : cmd.q_des_rad()) EXPECT_LE(std::abs(q), 0.3 * envelope + 1e-12) << "at cycle " << cmd.header().seq();
 }
 
 TEST_F(LeaderNodeTest, FreezesTheCommandWhenTheFollowerGoesSilent) {

@@ -1,5 +1,7 @@
 #include "teleop/twin/lockstep_link.h"
 
+#include <algorithm>
+
 #include "teleop/common/clock.h"
 #include "teleop/transport/joint_fields.h"
 
@@ -33,7 +35,9 @@ LockstepLink::Result LockstepLink::exchange() {
   command_.poll();
   if (!answered(step) && command_.wait_for_data(max_wait_ns_)) command_.poll();
   if (!answered(step)) {
-    return monotonic_now_ns() - sent_ns_ > timeout_ns_ ? Result::kStalled : Result::kPending;
+    const int64_t timeout_ns =
+        step == 1 ? std::max(timeout_ns_, static_cast<int64_t>(kFirstStepTimeoutS * 1e9)) : timeout_ns_;
+    return monotonic_now_ns() - sent_ns_ > timeout_ns ? Result::kStalled : Result::kPending;
   }
   awaiting_ = false;
   answered_ = step;

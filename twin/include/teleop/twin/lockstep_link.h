@@ -27,8 +27,12 @@ class LockstepLink {
   enum class Result {
     kCommand,  ///< the command of the current step is there: step now
     kPending,  ///< not yet, within the timeout: call again next cycle
-    kStalled,  ///< not within the timeout since the state went out
+    kStalled,  ///< not within the timeout since the state went out (the first step: kFirstStepTimeoutS)
   };
+  /// The first step's answer may wait on discovery, which a loaded host can draw out beyond a
+  /// running controller's timeout (both ends see each other, the controller's reply does not get
+  /// through yet): the stall timeout of the first step is at least this.
+  static constexpr double kFirstStepTimeoutS = 5.0;
   /// Sends the state of the next step (unless it already went out and is still unanswered) and
   /// waits up to `max_wait_s` for the command of that step.
   [[nodiscard]] Result exchange();
