@@ -46,6 +46,15 @@ double counter(const runtime::NodeReport& r, const std::string& name) {
   return -1;
 }
 
+// An outage of `samples` cycles leaves a sequence gap of that length, less the cycles the
+// sender's loop skipped (stalled) and so never published; 2 % slack for the outage's edges.
+void expect_gap_of_outage(uint64_t gap, double samples, double skipped) {
+  ASSERT_GE(skipped, 0.0) << "the publisher reports skipped_cycles";
+  const double slack = 0.02 * samples;
+  EXPECT_LE(static_cast<double>(gap), samples + slack);
+  EXPECT_GE(static_cast<double>(gap), samples - slack - skipped) << skipped << " cycles skipped";
+}
+
 TEST(ImpairedLink, BestEffortStreamLosesTheConfiguredFraction) {
   constexpr int kSamples = 4000;
   // discovery unimpaired: the stream starts from a matched state on both sides (with discovery
@@ -84,9 +93,10 @@ TEST(ImpairedLink, OutageLeavesAGapOfItsLengthInTheSequenceNumbers) {
   const LinkRun run = run_link({"--count", std::to_string(kSamples), "--profile", profile},
                                {"--count", std::to_string(kSamples), "--duration", "30"});
   const auto& rx = run.sub.received.at(0);
-  // 1 s at 1 kHz; the sender's loop keeps its rate on absolute deadlines
-  EXPECT_NEAR(static_cast<double>(rx.gap_max), 1000.0, 30.0);
-  EXPECT_NEAR(static_cast<double>(rx.lost), 1000.0, 30.0) << "nothing else was lost";
+  // 1 s at 1 kHz; the sender's loop keeps its rate on absolute deadlines, but a stall of this
+  // shared VM drops deadlines, and a sample never sent leaves no gap
+  expect_gap_of_outage(rx.gap_max, 1000.0, counter(run.pub, "skipped_cycles"));
+  EXPECT_NEAR(static_cast<double>(rx.lost), static_cast<double>(rx.gap_max), 30.0) << "little else was lost";
   EXPECT_GT(run.pub.links.at(0).outage, 900u);
 }
 
@@ -100,7 +110,7 @@ TEST(ImpairedLink, LivelinessExpiresDuringALongOutageAndRecoversAfterIt) {
   EXPECT_GE(rx.liveliness_lost, 1u) << "a 3 s silence exceeds the 500 ms lease";
   EXPECT_EQ(counter(run.sub, "alive_writers_at_end"), 1.0) << "the writer is alive again after the outage";
   EXPECT_EQ(rx.last_seq, static_cast<uint64_t>(kSamples)) << "samples flow again";
-  EXPECT_NEAR(static_cast<double>(rx.gap_max), 3000.0, 60.0);
+  expect_gap_of_outage(rx.gap_max, 3000.0, counter(run.pub, "skipped_cycles"));
 }
 
 TEST(ImpairedLink, DiscoveryFilterLetsPeersMatchWhileAllUserDataIsLost) {

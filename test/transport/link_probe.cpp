@@ -91,6 +91,8 @@ int publish(const Options& o) {
     r.final_state = "done";
     r.add(pub);
     r.add_links(participant);
+    // a stalled loop drops deadlines: those samples were never sent, so no gap can show them
+    r.counters.emplace_back("skipped_cycles", static_cast<double>(pacer.stats().skipped));
     runtime::write_report(r, o.report);
   }
   return 0;
