@@ -148,8 +148,13 @@ TEST_F(SecurityNetns, SecureNodesWorkEndToEnd) {
   EXPECT_NE(nodes_->process("leader").output().find("security on"), std::string::npos);
   const auto commands = received(nodes_->report("follower"), "teleop/leader/joint_command");
   const auto states = received(nodes_->report("leader"), "teleop/follower/joint_state");
-  EXPECT_GE(commands.received, 1000u) << "commands did not flow between secure nodes";
-  EXPECT_GE(states.received, 1000u) << "states did not flow between secure nodes";
+  // the secure handshake takes 1-3 s of the 4 s run on this VM (longer under load), so the
+  // claim is not a count: once matched, both streams flow at the nodes' 1 kHz without loss
+  for (const auto& [what, rx] : {std::pair{"commands", commands}, std::pair{"states", states}}) {
+    EXPECT_GE(rx.received, 250u) << what << " did not flow between secure nodes";
+    EXPECT_GT(rx.rate_hz, 800.0) << what;
+    EXPECT_LE(rx.lost, rx.expected / 100) << what;
+  }
   EXPECT_EQ(nodes_->report("leader").final_state, "running");
 }
 

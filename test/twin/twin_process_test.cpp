@@ -75,9 +75,11 @@ TEST(TwinLockstep, ReportsAStalledControllerWithinTheTimeout) {
                                               }
                                             }));
   RunningProcess controller(
-      {bin("teleop_lockstep_controller"), "--domain", std::to_string(domain), "--stall-after", "3000", "--idle-timeout", "10"});
+      {bin("teleop_lockstep_controller"), "--domain", std::to_string(domain), "--stall-after", "3000", "--idle-timeout", "15"});
+  // 3000 steps take 1-2 s once matched, but discovery and the first answer took over 4 s on this
+  // VM under load (the twin ended still starting, 0 steps): 10 s leave room for both
   const ProcessResult twin = run_process({bin("teleop_twin"), "-c", config, "--domain", std::to_string(domain), "-d",
-                                          "4", "-r", dir + "/twin.yaml"},
+                                          "10", "-r", dir + "/twin.yaml"},
                                          std::chrono::seconds(30));
   EXPECT_EQ(twin.exit_status, 0) << "the twin ends its run, it does not hang: " << twin.output;
   controller.stop(SIGTERM, std::chrono::seconds(10));
