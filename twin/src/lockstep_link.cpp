@@ -30,7 +30,12 @@ LockstepLink::Result LockstepLink::exchange() {
     // the header's sequence number is the step: the controller answers with its own n-th sample
     state_.publish();
     sent_ns_ = monotonic_now_ns();
+    resent_ns_ = sent_ns_;
     awaiting_ = true;
+  } else if (step == 1 && monotonic_now_ns() - resent_ns_ > static_cast<int64_t>(kFirstStepResendS * 1e9)) {
+    state_.resend();
+    resent_ns_ = monotonic_now_ns();
+    ++resends_;
   }
   command_.poll();
   if (!answered(step) && command_.wait_for_data(max_wait_ns_)) command_.poll();

@@ -200,6 +200,7 @@ void TwinNode::fill_report(runtime::NodeReport& report) const {
     report.add(lockstep_->command_subscription());
     report.counters.emplace_back("lockstep_steps", static_cast<double>(lockstep_->steps()));
     report.counters.emplace_back("lockstep_stalls", static_cast<double>(stalls_));
+    report.counters.emplace_back("lockstep_first_step_resends", static_cast<double>(lockstep_->first_step_resends()));
     write_trajectory();
   }
   if (hil_command_pub_) report.add(*hil_command_pub_);

@@ -34,6 +34,18 @@ class Publication {
     return false;
   }
 
+  /// Sends the last published sample again, with its sequence number and fresh times: for a
+  /// reliable exchange whose first sample may have gone out before the peer's reader was
+  /// matched (volatile durability keeps nothing for it). Readers see a duplicate, not a gap.
+  bool resend() {
+    auto& header = sample_.header();
+    header.stamp_ns(system_now_ns());
+    header.stamp_mono_ns(monotonic_now_ns());
+    if (writer_.write(sample_)) return true;
+    ++failed_;
+    return false;
+  }
+
   /// Waits up to `timeout_ns` for reliable readers to acknowledge what was published (shutdown).
   bool wait_for_acknowledgments(int64_t timeout_ns) { return writer_.wait_for_acknowledgments(timeout_ns); }
 

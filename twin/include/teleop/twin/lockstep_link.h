@@ -33,6 +33,11 @@ class LockstepLink {
   /// running controller's timeout (both ends see each other, the controller's reply does not get
   /// through yet): the stall timeout of the first step is at least this.
   static constexpr double kFirstStepTimeoutS = 5.0;
+  /// The twin counts as connected once *a* reader of its state is matched, which may be an
+  /// observer's before the controller's: the first state can then miss the controller for good
+  /// (volatile durability). Until the first answer, the state of step 1 goes out again this often;
+  /// the controller answers a step once, so a repeat it already has is ignored.
+  static constexpr double kFirstStepResendS = 0.1;
   /// Sends the state of the next step (unless it already went out and is still unanswered) and
   /// waits up to `max_wait_s` for the command of that step.
   [[nodiscard]] Result exchange();
@@ -40,6 +45,8 @@ class LockstepLink {
   const msg::JointCommand& command() const { return command_.latest(); }
   /// Steps whose command arrived.
   uint64_t steps() const { return answered_; }
+  /// Repeats of the first step's state (kFirstStepResendS).
+  uint64_t first_step_resends() const { return resends_; }
 
   const transport::Publication<msg::JointState>& state_publication() const { return state_; }
   const transport::Subscription<msg::JointCommand>& command_subscription() const { return command_; }
@@ -52,6 +59,8 @@ class LockstepLink {
   int64_t timeout_ns_;
   int64_t max_wait_ns_;
   int64_t sent_ns_ = 0;
+  int64_t resent_ns_ = 0;
+  uint64_t resends_ = 0;
   uint64_t answered_ = 0;
   bool awaiting_ = false;
 };
