@@ -14,7 +14,8 @@ using test::test_participant_config;
 
 constexpr size_t kJoints = 7;
 
-// A controller stand-in: reads the twin's states, answers on the command topic when told to.
+// A controller stand-in: answers on the command topic when told to (each test adds its reader
+// of the twin's states when the case needs it).
 struct StandInController {
   transport::Participant participant{test_participant_config("controller")};
   transport::Publication<msg::JointCommand> commands{participant, transport::topics::kLockstepCommand, "controller"};
@@ -22,7 +23,7 @@ struct StandInController {
   void answer() { commands.publish(); }
 };
 
-// Exchanges until the link answers one of `results`; false after `timeout`.
+// Exchanges until the link answers `wanted`; false after `timeout`.
 bool exchange_until(LockstepLink& link, LockstepLink::Result wanted, std::chrono::milliseconds timeout) {
   return eventually([&] { return link.exchange() == wanted; }, timeout);
 }

@@ -25,26 +25,14 @@ class Publication {
   /// Stamps the header (next sequence number, system and monotonic time) and sends.
   /// Real-time safe. Returns false if DDS refused the sample (counted).
   bool publish() {
-    auto& header = sample_.header();
-    header.seq(++sent_);
-    header.stamp_ns(system_now_ns());
-    header.stamp_mono_ns(monotonic_now_ns());
-    if (writer_.write(sample_)) return true;
-    ++failed_;
-    return false;
+    sample_.header().seq(++sent_);
+    return stamp_and_write();
   }
 
   /// Sends the last published sample again, with its sequence number and fresh times: for a
   /// reliable exchange whose first sample may have gone out before the peer's reader was
   /// matched (volatile durability keeps nothing for it). Readers see a duplicate, not a gap.
-  bool resend() {
-    auto& header = sample_.header();
-    header.stamp_ns(system_now_ns());
-    header.stamp_mono_ns(monotonic_now_ns());
-    if (writer_.write(sample_)) return true;
-    ++failed_;
-    return false;
-  }
+  bool resend() { return stamp_and_write(); }
 
   /// Waits up to `timeout_ns` for reliable readers to acknowledge what was published (shutdown).
   bool wait_for_acknowledgments(int64_t timeout_ns) { return writer_.wait_for_acknowledgments(timeout_ns); }
@@ -55,6 +43,16 @@ class Publication {
   int32_t matched() const { return writer_.matched(); }
 
  private:
+  // stamps the header's times (not its sequence number) and sends; a refusal is counted
+  bool stamp_and_write() {
+    auto& header = sample_.header();
+    header.stamp_ns(system_now_ns());
+    header.stamp_mono_ns(monotonic_now_ns());
+    if (writer_.write(sample_)) return true;
+    ++failed_;
+    return false;
+  }
+
   std::string topic_name_;
   Writer<T> writer_;
   T sample_;
