@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -51,9 +52,49 @@ std::string describe(const YAML::Node& node) {
   }
 }
 
+std::string line_of(const std::string& source, const YAML::Mark& mark) {
+  return mark.line >= 0 ? source + ":" + std::to_string(mark.line + 1) : source;
+}
+
+// yaml-cpp keeps every entry of a mapping, a repeated key too, and lookups find the first: a
+// second value would be silently ignored (and never range-checked), so a repeat is an error;
+// so is a key that is not a plain scalar (a list or mapping as a key), which no lookup can name
+void check_keys(const YAML::Node& node, const std::string& source, const std::string& path, int depth) {
+  // anchors can make a document a graph; real configuration files are a few levels deep
+  if (depth > 64) throw ConfigError(line_of(source, node.Mark()) + ": " + path + ": nested more than 64 levels deep");
+  if (node.IsSequence()) {
+    for (size_t i = 0; i < node.size(); ++i) check_keys(node[i], source, path + "[" + std::to_string(i) + "]", depth + 1);
+    return;
+  }
+  if (!node.IsMap()) return;
+  std::map<std::string, int> first_line;
+  for (const auto& entry : node) {
+    if (!entry.first.IsScalar()) {
+      throw ConfigError(line_of(source, entry.first.Mark()) + ": " + (path.empty() ? "(top level)" : path) +
+                        ": a key must be a plain name, got " + describe(entry.first));
+    }
+    const std::string& key = entry.first.Scalar();
+    const std::string key_path = path.empty() ? key : path + "." + key;
+    const auto [it, fresh] = first_line.emplace(key, entry.first.Mark().line + 1);
+    if (!fresh) {
+      throw ConfigError(line_of(source, entry.first.Mark()) + ": " + key_path + ": duplicate key (first given on line " +
+                        std::to_string(it->second) + ")");
+    }
+    check_keys(entry.second, source, key_path, depth + 1);
+  }
+}
+
+// the checks every parsed document passes before anything reads it
+YAML::Node checked_root(const YAML::Node& root, const std::string& source) {
+  if (!root.IsMap()) throw ConfigError(source + ": the top level must be a mapping of keys");
+  check_keys(root, source, "", 0);
+  return root;
+}
+
 }  // namespace
 
 ConfigNode ConfigNode::load_file(const std::string& path) {
+  if (std::filesystem::is_directory(path)) throw ConfigError(path + ": is a folder, not a configuration file");
   YAML::Node root;
   try {
     root = YAML::LoadFile(path);
@@ -61,9 +102,10 @@ ConfigNode ConfigNode::load_file(const std::string& path) {
     throw ConfigError(path + ": cannot open the file");
   } catch (const YAML::ParserException& e) {
     throw ConfigError(path + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(path + ": cannot read the file: " + e.msg);
   }
-  if (!root.IsMap()) throw ConfigError(path + ": the top level must be a mapping of keys");
-  return ConfigNode(std::make_shared<FileState>(FileState{path, {}, {}}), root, "");
+  return ConfigNode(std::make_shared<FileState>(FileState{path, {}, {}}), checked_root(root, path), "");
 }
 
 ConfigNode ConfigNode::load_string(const std::string& text, const std::string& source_name) {
@@ -72,9 +114,10 @@ ConfigNode ConfigNode::load_string(const std::string& text, const std::string& s
     root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw ConfigError(source_name + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(source_name + ": cannot read the text: " + e.msg);
   }
-  if (!root.IsMap()) throw ConfigError(source_name + ": the top level must be a mapping of keys");
-  return ConfigNode(std::make_shared<FileState>(FileState{source_name, {}, {}}), root, "");
+  return ConfigNode(std::make_shared<FileState>(FileState{source_name, {}, {}}), checked_root(root, source_name), "");
 }
 
 void ConfigNode::apply_override(const std::string& spec) {
@@ -98,6 +141,7 @@ void ConfigNode::apply_override(const std::string& spec) {
   } catch (const YAML::ParserException& e) {
     throw ConfigError(state_->file + ": --set " + spec + ": malformed YAML value: " + e.msg);
   }
+  check_keys(value, state_->file + " (--set " + spec + ")", key, 0);
   // walk (and where missing, create) the mappings down to the last segment; reset() re-seats the
   // handle, where operator= would overwrite the node it refers to
   YAML::Node mapping;
@@ -252,6 +296,23 @@ int64_t ConfigNode::get_int(const std::string& key, Range range, int64_t fallbac
 
 double ConfigNode::get_double(const std::string& key, Range range, double fallback) const {
   return lookup(key).IsDefined() ? get_double(key, range) : (record_->used.insert(key), fallback);
+}
+
+double ConfigNode::get_bound_or_off(const std::string& key, Range range, double fallback) const {
+  const YAML::Node n = lookup(key);
+  if (!n.IsDefined()) {
+    record_->used.insert(key);
+    return fallback;
+  }
+  if (n.IsScalar() && n.Scalar() == "off") {
+    record_->used.insert(key);
+    return std::numeric_limits<double>::infinity();
+  }
+  const YAML::Node value = require(key);
+  const auto v = convert_scalar<double>(value, key, "a number or off");
+  if (v == 0.0) throw error_at(value, key, "0 would switch the check off: write off if that is meant");
+  check_range(value, key, v, range);
+  return v;
 }
 
 std::string ConfigNode::get_yaml(const std::string& key) const {

@@ -2,11 +2,18 @@
 
 namespace teleop {
 
+void SequenceTracker::begin_session() {
+  if (session_received_ == 0) return;
+  expected_before_ += last_seq_ - first_seq_ + 1;
+  session_received_ = 0;
+}
+
 void SequenceTracker::on_sample(uint64_t seq, int64_t source_stamp_ns, int64_t receive_stamp_ns) {
-  if (received_ == 0) {
+  if (session_received_ == 0) {
     first_seq_ = last_seq_ = seq;
-    first_receive_ns_ = receive_stamp_ns;
+    if (received_ == 0) first_receive_ns_ = receive_stamp_ns;
     window_ = 1;
+    ++sessions_;
   } else if (seq == last_seq_) {
     ++duplicates_;
     return;
@@ -29,6 +36,7 @@ void SequenceTracker::on_sample(uint64_t seq, int64_t source_stamp_ns, int64_t r
     last_seq_ = seq;
   }
   ++received_;
+  ++session_received_;
   last_receive_ns_ = receive_stamp_ns;
   latency_.record(receive_stamp_ns - source_stamp_ns);
 }

@@ -10,6 +10,7 @@ const char* to_string(CommandIssue issue) {
     case CommandIssue::kWrongSize: return "rejected_wrong_size";
     case CommandIssue::kNonFinite: return "rejected_non_finite";
     case CommandIssue::kSequenceOld: return "rejected_old_sequence";
+    case CommandIssue::kUnknownMode: return "rejected_unknown_mode";
     case CommandIssue::kStale: return "rejected_stale";
     case CommandIssue::kMixedModes: return "rejected_mixed_modes";
     case CommandIssue::kBadOrientation: return "rejected_bad_orientation";
@@ -49,7 +50,6 @@ bool CommandValidator::all_finite(const msg::CartesianCommand& cmd) {
 }
 
 bool CommandValidator::stale(const msg::SampleHeader& header, int64_t now_system_ns) const {
-  if (limits_.max_command_age_s <= 0) return false;
   const double age_s = static_cast<double>(now_system_ns - header.stamp_ns()) * 1e-9;
   return std::abs(age_s) > limits_.max_command_age_s;
 }
@@ -67,18 +67,22 @@ double CommandValidator::clamp_counted(double v, double lo, double hi, CommandIs
   return std::clamp(v, lo, hi);
 }
 
-CommandVerdict CommandValidator::validate(const msg::JointCommand& cmd, int64_t now_system_ns, ValidCommand& out) {
+CommandVerdict CommandValidator::validate(const msg::JointCommand& cmd, int64_t now_system_ns, ValidCommand& out,
+                                          uint64_t session) {
   if (!sizes_ok(cmd)) return reject(CommandIssue::kWrongSize);
   if (!all_finite(cmd)) return reject(CommandIssue::kNonFinite);
-  if (cmd.header().seq() <= last_joint_seq_) return reject(CommandIssue::kSequenceOld);
+  if (last_joint_.not_newer(session, cmd.header().seq())) return reject(CommandIssue::kSequenceOld);
   if (stale(cmd.header(), now_system_ns)) return reject(CommandIssue::kStale);
   const auto& modes = cmd.mode();
+  // the wire carries the enum as a 32-bit number: anything may arrive
+  const auto known = [](msg::ControlMode m) { return m >= msg::CONTROL_GRAVITY && m <= msg::CONTROL_POSITION_PD; };
+  if (!std::all_of(modes.begin(), modes.end(), known)) return reject(CommandIssue::kUnknownMode);
   if (modes.empty() || modes[0] == msg::CONTROL_CARTESIAN_IMPEDANCE ||
       std::any_of(modes.begin(), modes.end(), [&](msg::ControlMode m) { return m != modes[0]; })) {
     // one controller runs the whole arm; Cartesian targets come as CartesianCommand
     return reject(CommandIssue::kMixedModes);
   }
-  last_joint_seq_ = cmd.header().seq();
+  last_joint_ = {session, cmd.header().seq()};
   out.mode = modes[0];
   bool clamped = false;
   const auto& l = limits_;
@@ -94,15 +98,16 @@ CommandVerdict CommandValidator::validate(const msg::JointCommand& cmd, int64_t 
   return clamped ? CommandVerdict::kClamped : CommandVerdict::kAccepted;
 }
 
-CommandVerdict CommandValidator::validate(const msg::CartesianCommand& cmd, int64_t now_system_ns, ValidCommand& out) {
+CommandVerdict CommandValidator::validate(const msg::CartesianCommand& cmd, int64_t now_system_ns, ValidCommand& out,
+                                          uint64_t session) {
   if (!all_finite(cmd)) return reject(CommandIssue::kNonFinite);
-  if (cmd.header().seq() <= last_cartesian_seq_) return reject(CommandIssue::kSequenceOld);
+  if (last_cartesian_.not_newer(session, cmd.header().seq())) return reject(CommandIssue::kSequenceOld);
   if (stale(cmd.header(), now_system_ns)) return reject(CommandIssue::kStale);
   const auto& o = cmd.target_pose().orientation();
   const double norm = std::sqrt(o.w() * o.w() + o.x() * o.x() + o.y() * o.y() + o.z() * o.z());
   // a little off unit is rounding and gets normalised; far off is a bug at the sender
   if (std::abs(norm - 1.0) > 0.01) return reject(CommandIssue::kBadOrientation);
-  last_cartesian_seq_ = cmd.header().seq();
+  last_cartesian_ = {session, cmd.header().seq()};
   out.mode = msg::CONTROL_CARTESIAN_IMPEDANCE;
   out.orientation_wxyz = {o.w() / norm, o.x() / norm, o.y() / norm, o.z() / norm};
 

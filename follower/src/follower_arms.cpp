@@ -9,6 +9,7 @@
 #include "teleop/follower/object_pose_feed.h"
 #include "teleop/runtime/arm_configs.h"
 #include "teleop/runtime/arm_group.h"
+#include "teleop/sim/model_config.h"
 
 namespace teleop::follower {
 namespace {
@@ -19,7 +20,7 @@ FollowerConfig arm_config(const FollowerConfig& shared, const std::string& name,
   c.arm = name;
   c.mujoco.joint_prefix = a.get_string("joint_prefix");
   c.mujoco.ee_site = a.get_string("ee_site");
-  c.control.model_path = a.get_path("control_model");
+  c.control.model_path = sim::get_model_path(a, "control_model");
   c.control.ee_site = c.mujoco.ee_site;
   if (a.has("rest_posture_rad")) {
     const JointVector rest = read_joint_list(a, "rest_posture_rad", c.joints, kJointAngleRange, 0.0);

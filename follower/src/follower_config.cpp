@@ -4,6 +4,7 @@
 
 #include "teleop/common/joint_config.h"
 #include "teleop/control/types.h"
+#include "teleop/sim/model_config.h"
 
 namespace teleop::follower {
 namespace {
@@ -20,7 +21,7 @@ void read_joint_limits(const ConfigNode& s, size_t n, JointLimits& l) {
   l.max_torque_nm = read_joint_list(s, "max_torque_nm", n, Range{0.1, 1e4}, 80.0);
   l.max_stiffness_nm_per_rad = s.get_double("max_stiffness_nm_per_rad", Range{0, 1e6}, l.max_stiffness_nm_per_rad);
   l.max_damping_nms_per_rad = s.get_double("max_damping_nms_per_rad", Range{0, 1e5}, l.max_damping_nms_per_rad);
-  l.max_command_age_s = s.get_double("max_command_age_ms", Range{0, 60'000}, l.max_command_age_s * 1e3) * 1e-3;
+  l.max_command_age_s = s.get_bound_or_off("max_command_age_ms", Range{1, 60'000}, l.max_command_age_s * 1e3) * 1e-3;
 }
 
 void read_cartesian_limits(const ConfigNode& s, JointLimits& l) {
@@ -39,10 +40,28 @@ void read_cartesian_limits(const ConfigNode& s, JointLimits& l) {
   l.max_angular_velocity_radps = s.get_double("max_angular_velocity_radps", Range{0.001, 20}, l.max_angular_velocity_radps);
 }
 
+// `contact_reflex: off`, or a mapping of thresholds (contact_reflex.h); absent: the defaults
+ContactReflexConfig read_contact_reflex(const ConfigNode& s, size_t n) {
+  ContactReflexConfig r;
+  if (!s.has("contact_reflex")) return r;
+  if (s.get_yaml("contact_reflex") == "off") {
+    r.enabled = false;
+    return r;
+  }
+  const ConfigNode c = s.child("contact_reflex");
+  r.joint_torque_nm = read_joint_list(c, "joint_torque_nm", n, Range{0.1, 1e4}, 20.0);
+  if (!c.has("joint_torque_nm")) r.joint_torque_nm = ContactReflexConfig{}.joint_torque_nm;
+  r.force_n = read_vector3(c, "force_n", Range{0.1, 1e5}, r.force_n);
+  r.torque_nm = read_vector3(c, "torque_nm", Range{0.1, 1e4}, r.torque_nm);
+  r.hold_stiffness_nm_per_rad = c.get_double("hold_stiffness_nm_per_rad", Range{0, 1e4}, r.hold_stiffness_nm_per_rad);
+  r.hold_damping_nms_per_rad = c.get_double("hold_damping_nms_per_rad", Range{0, 1e3}, r.hold_damping_nms_per_rad);
+  return r;
+}
+
 // `per_arm`: the arms name their models (follower.arms, follower_arms.cpp)
 ArmControlConfig read_control(const ConfigNode& c, size_t n, bool per_arm) {
   ArmControlConfig a;
-  if (!per_arm || c.has("model")) a.model_path = c.get_path("model");
+  if (!per_arm || c.has("model")) a.model_path = sim::get_model_path(c, "model");
   a.ee_site = c.get_string("ee_site", a.ee_site);
   a.position_pd.kp = to_eigen(read_joint_list(c, "position_pd_kp", n, Range{0, 1e5}, 600.0));
   a.position_pd.kd = to_eigen(read_joint_list(c, "position_pd_kd", n, Range{0, 1e4}, 30.0));
@@ -69,7 +88,7 @@ FollowerConfig parse_follower_config(const ConfigNode& root) {
   }
   s.get_choice("hardware", {"mujoco"}, "mujoco");
   const ConfigNode mujoco = s.child("mujoco");
-  c.mujoco.model_path = mujoco.get_path("model");
+  c.mujoco.model_path = sim::get_model_path(mujoco, "model");
   c.mujoco.keyframe = mujoco.get_string("keyframe", "");
   c.command_source = s.get_choice("command_source", {"leader", "twin"}, "leader") == "twin"
                          ? FollowerConfig::CommandSource::kTwin
@@ -87,11 +106,12 @@ FollowerConfig parse_follower_config(const ConfigNode& root) {
   }
   read_joint_limits(s, c.joints, c.limits);
   read_cartesian_limits(s, c.limits);
-  c.max_torque_rate_nm_per_s = s.get_double("max_torque_rate_nm_per_s", Range{0, 1e6}, c.max_torque_rate_nm_per_s);
+  c.max_torque_rate_nm_per_s = s.get_bound_or_off("max_torque_rate_nm_per_s", Range{1, 1e6}, c.max_torque_rate_nm_per_s);
   c.command_timeout_s = s.get_double("command_timeout_ms", Range{1, 60'000}, c.command_timeout_s * 1e3) * 1e-3;
   c.hold_stiffness_nm_per_rad = s.get_double("hold_stiffness_nm_per_rad", Range{0, 1e5}, c.hold_stiffness_nm_per_rad);
   c.hold_damping_nms_per_rad = s.get_double("hold_damping_nms_per_rad", Range{0, 1e4}, c.hold_damping_nms_per_rad);
   c.control = read_control(s.child("control"), c.joints, s.has("arms"));
+  c.contact_reflex = read_contact_reflex(s, c.joints);
   c.trace_box_task = s.get_bool("trace_box_task", false);
   if (c.trace_box_task && !s.has("arms")) throw s.error("trace_box_task", "needs the two arms of follower.arms");
   if (s.has("tracked_objects")) {

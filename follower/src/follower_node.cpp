@@ -30,6 +30,14 @@ JointLimits effective_limits(const FollowerConfig& config, const RobotHardware& 
   return l;
 }
 
+// a command stream follows one sender; another may take over once that one has been silent for a
+// watchdog period (a restarted leader at once, a stray writer never while the leader streams)
+StreamSessionPolicy command_sessions(const FollowerConfig& config) {
+  StreamSessionPolicy policy;
+  policy.takeover_silence_ns = static_cast<int64_t>(config.command_timeout_s * 1e9);
+  return policy;
+}
+
 const transport::TopicSpec<msg::JointCommand>& joint_topic(const FollowerConfig& config) {
   return config.command_source == FollowerConfig::CommandSource::kTwin ? transport::topics::kTwinCommand
                                                                        : transport::topics::kLeaderCommand;
@@ -47,12 +55,17 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<RobotHa
       control_(config.control, 1.0 / context.node.rate_hz),
       validator_(config.joints, effective_limits(config, *hardware_)),
       limiter_(config.joints, validator_.limits().max_torque_nm, config.max_torque_rate_nm_per_s, 1.0 / context.node.rate_hz),
-      joint_commands_(context.participant, transport::arm_topic(joint_topic(config), config.arm)),
-      cartesian_commands_(context.participant, transport::arm_topic(transport::topics::kLeaderCartesian, config.arm)),
+      joint_commands_(context.participant, transport::arm_topic(joint_topic(config), config.arm), command_sessions(config)),
+      cartesian_commands_(context.participant, transport::arm_topic(transport::topics::kLeaderCartesian, config.arm),
+                          command_sessions(config)),
+      reset_requests_(context.participant.make_reader(transport::topics::kResetRequest)),
+      name_(context.node.name),
       state_pub_(context.participant, transport::arm_topic(transport::topics::kFollowerState, config.arm),
                  context.node.name),
       wrench_pub_(context.participant, transport::arm_topic(transport::topics::kFollowerWrench, config.arm),
-                  context.node.name) {
+                  context.node.name),
+      reflex_(config.contact_reflex),
+      rejoin_(config.joints, validator_.limits().max_velocity_radps, 1.0 / context.node.rate_hz) {
   if (hardware_->joints() != config.joints) {
     throw std::runtime_error("follower.joints is " + std::to_string(config.joints) + " but the robot (" +
                              hardware_->name() + ") has " + std::to_string(hardware_->joints()) + " joints");
@@ -64,7 +77,7 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<RobotHa
   wrench_pub_.sample().frame("base");
   if (hardware_->read(arm_) != HardwareStatus::kOk) throw std::runtime_error("the robot hardware cannot be read");
   // until a command arrives, hold the pose the robot is in, from the torque it holds it with
-  hold_current_pose();
+  hold_current_pose(active_, config_.hold_stiffness_nm_per_rad, config_.hold_damping_nms_per_rad);
   limiter_.reset(arm_.tau_measured_nm);
   if (config.teleoperation && teleoperation::is_cartesian(config.teleoperation->architecture)) {
     // pfc observes its energy balance too, only pfc_tdpa corrects it
@@ -76,29 +89,55 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<RobotHa
   }
 }
 
-void FollowerNode::hold_current_pose() {
-  active_ = ValidCommand{};
-  active_.mode = msg::CONTROL_JOINT_IMPEDANCE;
-  std::copy_n(arm_.q_rad.begin(), config_.joints, active_.q_des_rad.begin());
-  std::fill_n(active_.stiffness.begin(), config_.joints, config_.hold_stiffness_nm_per_rad);
-  std::fill_n(active_.damping.begin(), config_.joints, config_.hold_damping_nms_per_rad);
+void FollowerNode::hold_current_pose(ValidCommand& hold, double stiffness, double damping) {
+  hold = ValidCommand{};
+  hold.mode = msg::CONTROL_JOINT_IMPEDANCE;
+  std::copy_n(arm_.q_rad.begin(), config_.joints, hold.q_des_rad.begin());
+  std::fill_n(hold.stiffness.begin(), config_.joints, stiffness);
+  std::fill_n(hold.damping.begin(), config_.joints, damping);
+  // commands that resume later travel from here
+  held_q_rad_ = hold.q_des_rad;
+  rejoin_.stop();
 }
 
 void FollowerNode::take_commands(int64_t now_ns) {
   const int64_t now_system_ns = system_now_ns();
   // a command replaces the active one only when valid; joint and Cartesian commands may both
   // arrive (a mode change), the Cartesian one is taken last
-  if (joint_commands_.poll() > 0 &&
-      validator_.validate(joint_commands_.latest(), now_system_ns, active_) != CommandVerdict::kRejected) {
-    source_ = Source::kJoint;
-    liveliness_lost_at_command_ = joint_commands_.reader().liveliness_lost();
-    last_valid_command_ns_ = now_ns;
+  if (joint_commands_.poll() > 0) {
+    const uint64_t session = joint_commands_.session().session();
+    if (validator_.validate(joint_commands_.latest(), now_system_ns, active_, session) != CommandVerdict::kRejected) {
+      source_ = Source::kJoint;
+      liveliness_lost_at_command_ = joint_commands_.reader().liveliness_lost();
+      on_valid_command(session, joint_session_, joint_commands_.latest().header().seq(), now_ns);
+    }
   }
-  if (cartesian_commands_.poll() > 0 &&
-      validator_.validate(cartesian_commands_.latest(), now_system_ns, active_) != CommandVerdict::kRejected) {
-    source_ = Source::kCartesian;
-    liveliness_lost_at_command_ = cartesian_commands_.reader().liveliness_lost();
-    last_valid_command_ns_ = now_ns;
+  if (cartesian_commands_.poll() > 0) {
+    const uint64_t session = cartesian_commands_.session().session();
+    if (validator_.validate(cartesian_commands_.latest(), now_system_ns, active_, session) != CommandVerdict::kRejected) {
+      source_ = Source::kCartesian;
+      liveliness_lost_at_command_ = cartesian_commands_.reader().liveliness_lost();
+      on_valid_command(session, cartesian_session_, cartesian_commands_.latest().header().seq(), now_ns);
+    }
+  }
+}
+
+void FollowerNode::on_valid_command(uint64_t session, uint64_t& last_session, uint64_t seq, int64_t now_ns) {
+  last_valid_command_ns_ = now_ns;
+  command_seq_ = seq;
+  if (session == last_session) return;
+  last_session = session;
+  ++command_sessions_;
+  // a new sender (a restarted leader) starts afresh: a reflex latched under its predecessor is
+  // cleared, the robot rejoins it from where it holds
+  reflex_.reset();
+}
+
+void FollowerNode::take_reset_requests() {
+  while (reset_requests_.take_next(reset_request_)) {
+    if (reset_request_.target() != name_) continue;
+    ++resets_;
+    reflex_.reset();
   }
 }
 
@@ -127,6 +166,10 @@ void FollowerNode::run_watchdog(int64_t now_ns) {
   const double silence_s = static_cast<double>(now_ns - last_valid_command_ns_) * 1e-9;
   const bool lost = source_lost(silence_s);
   if (source_ != Source::kNone && silence_s < config_.command_timeout_s && !lost) {
+    // a latched reflex holds until reset, however well the commands flow
+    if (reflex_.latched()) return;
+    // commands (re)start after a hold: the robot joins them from the pose it held
+    if (state_ != msg::STATE_RUNNING) rejoin_.start(held_q_rad_);
     state_ = msg::STATE_RUNNING;
     return;
   }
@@ -136,14 +179,25 @@ void FollowerNode::run_watchdog(int64_t now_ns) {
     ++watchdog_trips_;
     if (lost) ++liveliness_trips_;
     watchdog_latency_max_s_ = std::max(watchdog_latency_max_s_, silence_s);
-    hold_current_pose();
+    hold_current_pose(active_, config_.hold_stiffness_nm_per_rad, config_.hold_damping_nms_per_rad);
     // the channel's session ended with the command source: both ends start their bookkeeping afresh
     if (passive_) passive_->reset();
   }
 }
 
+void FollowerNode::run_reflex() {
+  if (state_ == msg::STATE_FAULT) return;
+  if (!reflex_.check(control_.external_torque(), control_.wrench())) return;
+  // tripped: stop moving into the contact, yield to it, and tell the operator
+  state_ = msg::STATE_SAFE_HOLD;
+  const ContactReflexConfig& r = reflex_.config();
+  hold_current_pose(reflex_hold_, r.hold_stiffness_nm_per_rad, r.hold_damping_nms_per_rad);
+  if (passive_) passive_->reset();
+}
+
 void FollowerNode::apply_passivity() {
-  controlled_ = &active_;
+  // a latched reflex holds compliantly whatever comes in; otherwise the command, joined smoothly
+  controlled_ = reflex_.latched() ? &reflex_hold_ : &rejoin_.apply(active_);
   if (!passive_) return;
   tdpa_->receive();
   if (state_ == msg::STATE_RUNNING && active_.mode == msg::CONTROL_CARTESIAN_IMPEDANCE) {
@@ -181,7 +235,7 @@ void FollowerNode::record_metrics() {
     observer_vs_hardware_.add(r[k] - arm_.tau_ext_nm[i]);
     direct_vs_hardware_.add(d[k] - arm_.tau_ext_nm[i]);
   }
-  if (state_ != msg::STATE_RUNNING || control_.blending()) return;
+  if (state_ != msg::STATE_RUNNING || control_.blending() || rejoin_.active()) return;
   if (active_.mode == msg::CONTROL_CARTESIAN_IMPEDANCE) {
     const Eigen::Vector3d target(active_.x_des_m.data());
     cartesian_tracking_.add((target - control_.ee_position()).norm());
@@ -214,7 +268,9 @@ void FollowerNode::cycle(const CycleTick& tick) {
   // the watchdog counts control cycles (their deadlines): a cycle released late neither
   // shortens nor stretches the timeout
   take_commands(tick.deadline_ns);
+  take_reset_requests();
   run_watchdog(tick.deadline_ns);
+  run_reflex();
   apply_passivity();
   command_torque(*controlled_);
   // a robot that refuses a command or cannot be read is a fault: hold what we have, report it
@@ -228,7 +284,11 @@ void FollowerNode::cycle(const CycleTick& tick) {
 
 void FollowerNode::active_faults(std::vector<uint32_t>& faults) const {
   if (hardware_faults_ > 0) faults.push_back(msg::FAULT_HARDWARE);
-  if (state_ == msg::STATE_SAFE_HOLD) faults.push_back(liveliness_trips_ > 0 ? msg::FAULT_PEER_LOST : msg::FAULT_STALE_INPUT);
+  if (reflex_.latched()) {
+    faults.push_back(msg::FAULT_CONTACT_REFLEX);
+  } else if (state_ == msg::STATE_SAFE_HOLD) {
+    faults.push_back(liveliness_trips_ > 0 ? msg::FAULT_PEER_LOST : msg::FAULT_STALE_INPUT);
+  }
   if (validator_.rejected() > 0) faults.push_back(msg::FAULT_COMMAND_REJECTED);
 }
 
@@ -255,6 +315,12 @@ void FollowerNode::fill_report(runtime::NodeReport& report) const {
   counter("observer_vs_hardware_rms_nm", observer_vs_hardware_.rms());
   counter("direct_vs_hardware_rms_nm", direct_vs_hardware_.rms());
   counter("peak_external_force_n", peak_external_force_n_);
+  counter("command_sessions", static_cast<double>(command_sessions_));
+  counter("rejoins", static_cast<double>(rejoin_.rejoins()));
+  counter("reflex_trips", static_cast<double>(reflex_.trips()));
+  counter("reflex_trip_ratio", reflex_.last_trip_ratio());
+  counter("reflex_latched", reflex_.latched() ? 1.0 : 0.0);
+  counter("resets", static_cast<double>(resets_));
   if (tdpa_) {
     tdpa_->fill_report(report);
     counter("tdpa_position_drift_m", passive_->position_drift_m());
@@ -267,7 +333,7 @@ void FollowerNode::fill_report(runtime::NodeReport& report) const {
 
 void FollowerNode::trace_columns(std::vector<std::string>& columns) const {
   for (const char* c : {"x_x", "x_y", "x_z", "f_ext_x", "f_ext_y", "f_ext_z", "f_est_x", "f_est_y", "f_est_z", "tdpa_w_j",
-                        "tdpa_drift_m", "torque_ratio", "state"}) {
+                        "tdpa_drift_m", "torque_ratio", "state", "cmd_session", "cmd_seq", "reflex"}) {
     columns.emplace_back(c);
   }
   for (size_t i = 0; i < config_.joints; ++i) columns.push_back("q_" + std::to_string(i));
@@ -283,6 +349,10 @@ void FollowerNode::trace_row(double* row) const {
   *row++ = passive_ ? passive_->position_drift_m() : 0.0;
   *row++ = torque_ratio_;
   *row++ = static_cast<double>(state_);
+  // which sender's command is in force (sessions counted from 1) and its number
+  *row++ = static_cast<double>(command_sessions_);
+  *row++ = static_cast<double>(command_seq_);
+  *row++ = reflex_.latched() ? 1.0 : 0.0;
   std::copy_n(arm_.q_rad.begin(), config_.joints, row);
 }
 

@@ -5,6 +5,7 @@
 #include "teleop/common/joint_config.h"
 #include "teleop/runtime/arm_configs.h"
 #include "teleop/runtime/arm_group.h"
+#include "teleop/sim/model_config.h"
 
 namespace teleop::leader {
 namespace {
@@ -14,7 +15,7 @@ LeaderConfig arm_config(const LeaderConfig& shared, const std::string& name, con
   LeaderConfig c = shared;
   c.arm = name;
   // the hand's device is mounted like the robot's arm: one model for the device and the mapping
-  c.arm_model = a.get_path("model");
+  c.arm_model = sim::get_model_path(a, "model");
   c.haptic_arm.model.model_path = c.arm_model;
   c.ee_site = a.get_string("ee_site");
   c.home_rad = read_joint_list(a, "home_rad", c.joints, kJointAngleRange, 0.0);

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "teleop/common/joint_config.h"
+#include "teleop/sim/model_config.h"
 #include "teleop/transport/arm_topic.h"
 #include "teleop/transport/joint_fields.h"
 
@@ -62,7 +63,7 @@ void parse_feedback(const ConfigNode& s, LeaderConfig& c) {
   c.feedback.gain = f.get_double("gain", Range{0, 100}, c.feedback.gain);
   c.feedback.cutoff_hz = f.get_double("cutoff_hz", Range{0, 500}, c.feedback.cutoff_hz);
   c.feedback.max_torque_nm = read_joint_list(f, "max_torque_nm", c.joints, Range{0, 1e3}, 20.0);
-  c.feedback.max_rate_nm_per_s = f.get_double("max_rate_nm_per_s", Range{0, 1e6}, c.feedback.max_rate_nm_per_s);
+  c.feedback.max_rate_nm_per_s = f.get_bound_or_off("max_rate_nm_per_s", Range{1, 1e6}, c.feedback.max_rate_nm_per_s);
   c.feedback.fade_s = f.get_double("fade_ms", Range{0, 10'000}, c.feedback.fade_s * 1e3) * 1e-3;
 }
 
@@ -90,14 +91,14 @@ LeaderConfig LeaderNode::parse_config(const ConfigNode& root) {
   // a two-handed station names each hand's model in leader.arms (leader_arms.cpp)
   const bool per_arm_models = s.has("arms");
   if (auto arm = s.optional_child("haptic_arm")) {
-    if (!per_arm_models) c.haptic_arm.model.model_path = arm->get_path("model");
+    if (!per_arm_models) c.haptic_arm.model.model_path = sim::get_model_path(*arm, "model");
     c.haptic_arm.model.keyframe = arm->get_string("keyframe", "");
     c.haptic_arm.hand_stiffness_nm_per_rad = arm->get_double("hand_stiffness_nm_per_rad", Range{0, 1e4}, c.haptic_arm.hand_stiffness_nm_per_rad);
     c.haptic_arm.hand_damping_nms_per_rad = arm->get_double("hand_damping_nms_per_rad", Range{0, 1e3}, c.haptic_arm.hand_damping_nms_per_rad);
   } else if (c.device == LeaderConfig::Device::kHapticArm) {
     throw s.error("haptic_arm", "device: haptic_arm needs a haptic_arm section with the model file");
   }
-  if (s.has("arm_model")) c.arm_model = s.get_path("arm_model");
+  if (s.has("arm_model")) c.arm_model = sim::get_model_path(s, "arm_model");
   c.ee_site = s.get_string("ee_site", c.ee_site);
   c.workspace_scale = s.get_double("workspace_scale", Range{0.01, 100}, c.workspace_scale);
   parse_feedback(s, c);
@@ -390,7 +391,8 @@ void LeaderNode::fill_report(runtime::NodeReport& report) const {
 }
 
 void LeaderNode::trace_columns(std::vector<std::string>& columns) const {
-  for (const char* c : {"x_cmd_x", "x_cmd_y", "x_cmd_z", "f_felt_x", "f_felt_y", "f_felt_z", "tdpa_w_j", "feedback_fade", "state"}) {
+  for (const char* c : {"x_cmd_x", "x_cmd_y", "x_cmd_z", "f_felt_x", "f_felt_y", "f_felt_z", "tdpa_w_j", "feedback_fade", "state",
+                        "peer_session"}) {
     columns.emplace_back(c);
   }
   for (size_t i = 0; i < config_.joints; ++i) columns.push_back("q_dev_" + std::to_string(i));
@@ -406,6 +408,8 @@ void LeaderNode::trace_row(double* row) const {
   *row++ = tdpa_ ? tdpa_->observed_energy_j() : nan;
   *row++ = renderer_.fade();
   *row++ = static_cast<double>(state_);
+  // which follower's state the leader follows (a restarted follower opens a new session)
+  *row++ = static_cast<double>(follower_state_.session().session());
   row = std::copy_n(device_.q_rad.begin(), config_.joints, row);
   row = std::copy_n(device_.dq_radps.begin(), config_.joints, row);
   std::copy_n(renderer_.output().begin(), config_.joints, row);

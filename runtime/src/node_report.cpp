@@ -4,6 +4,8 @@
 
 #include <fstream>
 #include <stdexcept>
+#include <type_traits>
+#include <variant>
 
 #include "teleop/common/config.h"
 
@@ -46,8 +48,11 @@ void NodeReport::add_links(const transport::Participant& participant) {
 
 ReceivedTopic NodeReport::received_from(const std::string& topic, const SequenceTracker& stats,
                                         const DurationHistogram& age, uint64_t deadline_missed,
-                                        uint64_t liveliness_lost) {
+                                        uint64_t liveliness_lost, const StreamSession& session) {
   ReceivedTopic r;
+  r.sessions = stats.sessions();
+  r.refused_other_writer = session.refused_other_writer();
+  r.refused_sequence_jump = session.refused_sequence_jump();
   r.topic = topic;
   r.received = stats.received();
   r.expected = stats.expected();
@@ -70,75 +75,149 @@ ReceivedTopic NodeReport::received_from(const std::string& topic, const Sequence
   return r;
 }
 
+namespace {
+
+constexpr Range kAny{-1e18, 1e18};
+constexpr Range kCount{0, 1e19};
+
+// one entry per field of a report struct: its YAML key and member; the writer and the reader both
+// walk these tables, so a field is named once. Fields added after reports were first written are
+// optional on reading (older reports lack them).
+template <typename S>
+struct Field {
+  const char* key;
+  std::variant<std::string S::*, double S::*, uint64_t S::*, int64_t S::*> member;
+  bool optional = false;
+};
+
+template <typename S>
+void write_fields(YAML::Emitter& out, const S& s, std::initializer_list<Field<S>> fields) {
+  for (const Field<S>& f : fields) {
+    out << YAML::Key << f.key << YAML::Value;
+    std::visit([&](auto member) { out << s.*member; }, f.member);
+  }
+}
+
+template <typename S>
+void read_fields(const ConfigNode& n, S& s, std::initializer_list<Field<S>> fields) {
+  for (const Field<S>& f : fields) {
+    std::visit(
+        [&](auto member) {
+          using T = std::remove_reference_t<decltype(s.*member)>;
+          if (f.optional && !n.has(f.key)) {
+            n.get_string(f.key, "");  // marks it as read; the default stays
+            return;
+          }
+          if constexpr (std::is_same_v<T, std::string>) {
+            s.*member = n.get_string(f.key);
+          } else if constexpr (std::is_same_v<T, double>) {
+            s.*member = n.get_double(f.key, kAny);
+          } else if constexpr (std::is_same_v<T, uint64_t>) {
+            // counts may exceed int64: read as a number
+            s.*member = static_cast<uint64_t>(n.get_double(f.key, kCount));
+          } else {
+            s.*member = n.get_int(f.key, kAny);
+          }
+        },
+        f.member);
+  }
+}
+
+const std::initializer_list<Field<NodeReport>> kReportFields{
+    {"name", &NodeReport::name},
+    {"role", &NodeReport::role},
+    {"final_state", &NodeReport::final_state},
+    {"rate_hz", &NodeReport::rate_hz},
+    {"run_time_s", &NodeReport::run_time_s},
+    {"cycles", &NodeReport::cycles},
+    {"overruns", &NodeReport::overruns},
+    {"skipped", &NodeReport::skipped},
+    {"lateness_p50_ns", &NodeReport::lateness_p50_ns},
+    {"lateness_p99_ns", &NodeReport::lateness_p99_ns},
+    {"lateness_max_ns", &NodeReport::lateness_max_ns},
+    {"shutdown_ms", &NodeReport::shutdown_ms},
+};
+
+const std::initializer_list<Field<PublishedTopic>> kPublishedFields{
+    {"topic", &PublishedTopic::topic},
+    {"sent", &PublishedTopic::sent},
+    {"failed", &PublishedTopic::failed},
+};
+
+const std::initializer_list<Field<ReceivedTopic>> kReceivedFields{
+    {"topic", &ReceivedTopic::topic},
+    {"received", &ReceivedTopic::received},
+    {"expected", &ReceivedTopic::expected},
+    {"lost", &ReceivedTopic::lost},
+    {"duplicates", &ReceivedTopic::duplicates},
+    {"reordered", &ReceivedTopic::reordered},
+    {"first_seq", &ReceivedTopic::first_seq},
+    {"last_seq", &ReceivedTopic::last_seq},
+    {"rate_hz", &ReceivedTopic::rate_hz},
+    {"latency_p50_ns", &ReceivedTopic::latency_p50_ns},
+    {"latency_p99_ns", &ReceivedTopic::latency_p99_ns},
+    {"latency_max_ns", &ReceivedTopic::latency_max_ns},
+    {"deadline_missed", &ReceivedTopic::deadline_missed},
+    {"liveliness_lost", &ReceivedTopic::liveliness_lost},
+    {"gap_max", &ReceivedTopic::gap_max, true},
+    {"gap_mean", &ReceivedTopic::gap_mean, true},
+    {"age_p50_ns", &ReceivedTopic::age_p50_ns, true},
+    {"age_p99_ns", &ReceivedTopic::age_p99_ns, true},
+    {"age_max_ns", &ReceivedTopic::age_max_ns, true},
+    {"sessions", &ReceivedTopic::sessions, true},
+    {"refused_other_writer", &ReceivedTopic::refused_other_writer, true},
+    {"refused_sequence_jump", &ReceivedTopic::refused_sequence_jump, true},
+};
+
+const std::initializer_list<Field<ImpairedLink>> kLinkFields{
+    {"to", &ImpairedLink::to},
+    {"profile", &ImpairedLink::profile},
+    {"messages", &ImpairedLink::messages},
+    {"delivered", &ImpairedLink::delivered},
+    {"lost", &ImpairedLink::lost},
+    {"outage", &ImpairedLink::outage},
+    {"queue", &ImpairedLink::queue},
+    {"duplicated", &ImpairedLink::duplicated},
+    {"reordered", &ImpairedLink::reordered},
+    {"loss_burst_mean", &ImpairedLink::loss_burst_mean},
+    {"loss_burst_max", &ImpairedLink::loss_burst_max},
+    {"delay_p50_ns", &ImpairedLink::delay_p50_ns},
+    {"delay_p99_ns", &ImpairedLink::delay_p99_ns},
+    {"delay_max_ns", &ImpairedLink::delay_max_ns},
+    {"configured_loss", &ImpairedLink::configured_loss},
+    {"configured_delay_ns", &ImpairedLink::configured_delay_ns},
+};
+
+template <typename S>
+void write_list(YAML::Emitter& out, const char* key, const std::vector<S>& items, std::initializer_list<Field<S>> fields,
+                bool flow = false) {
+  out << YAML::Key << key << YAML::Value << YAML::BeginSeq;
+  for (const S& item : items) {
+    if (flow) out << YAML::Flow;
+    out << YAML::BeginMap;
+    write_fields(out, item, fields);
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+}
+
+template <typename S>
+std::vector<S> read_list(const ConfigNode& root, const char* key, std::initializer_list<Field<S>> fields) {
+  std::vector<S> items;
+  for (const auto& n : root.get_node_list(key)) read_fields(n, items.emplace_back(), fields);
+  return items;
+}
+
+}  // namespace
+
 void write_report(const NodeReport& report, const std::string& path) {
   YAML::Emitter out;
   out << YAML::BeginMap;
-  out << YAML::Key << "name" << YAML::Value << report.name;
-  out << YAML::Key << "role" << YAML::Value << report.role;
-  out << YAML::Key << "final_state" << YAML::Value << report.final_state;
-  out << YAML::Key << "rate_hz" << YAML::Value << report.rate_hz;
-  out << YAML::Key << "run_time_s" << YAML::Value << report.run_time_s;
-  out << YAML::Key << "cycles" << YAML::Value << report.cycles;
-  out << YAML::Key << "overruns" << YAML::Value << report.overruns;
-  out << YAML::Key << "skipped" << YAML::Value << report.skipped;
-  out << YAML::Key << "lateness_p50_ns" << YAML::Value << report.lateness_p50_ns;
-  out << YAML::Key << "lateness_p99_ns" << YAML::Value << report.lateness_p99_ns;
-  out << YAML::Key << "lateness_max_ns" << YAML::Value << report.lateness_max_ns;
-  out << YAML::Key << "shutdown_ms" << YAML::Value << report.shutdown_ms;
-  out << YAML::Key << "published" << YAML::Value << YAML::BeginSeq;
-  for (const auto& p : report.published) {
-    out << YAML::Flow << YAML::BeginMap << YAML::Key << "topic" << YAML::Value << p.topic << YAML::Key << "sent"
-        << YAML::Value << p.sent << YAML::Key << "failed" << YAML::Value << p.failed << YAML::EndMap;
-  }
-  out << YAML::EndSeq;
-  out << YAML::Key << "received" << YAML::Value << YAML::BeginSeq;
-  for (const auto& r : report.received) {
-    out << YAML::BeginMap;
-    out << YAML::Key << "topic" << YAML::Value << r.topic;
-    out << YAML::Key << "received" << YAML::Value << r.received;
-    out << YAML::Key << "expected" << YAML::Value << r.expected;
-    out << YAML::Key << "lost" << YAML::Value << r.lost;
-    out << YAML::Key << "duplicates" << YAML::Value << r.duplicates;
-    out << YAML::Key << "reordered" << YAML::Value << r.reordered;
-    out << YAML::Key << "first_seq" << YAML::Value << r.first_seq;
-    out << YAML::Key << "last_seq" << YAML::Value << r.last_seq;
-    out << YAML::Key << "rate_hz" << YAML::Value << r.rate_hz;
-    out << YAML::Key << "latency_p50_ns" << YAML::Value << r.latency_p50_ns;
-    out << YAML::Key << "latency_p99_ns" << YAML::Value << r.latency_p99_ns;
-    out << YAML::Key << "latency_max_ns" << YAML::Value << r.latency_max_ns;
-    out << YAML::Key << "deadline_missed" << YAML::Value << r.deadline_missed;
-    out << YAML::Key << "liveliness_lost" << YAML::Value << r.liveliness_lost;
-    out << YAML::Key << "gap_max" << YAML::Value << r.gap_max;
-    out << YAML::Key << "gap_mean" << YAML::Value << r.gap_mean;
-    out << YAML::Key << "age_p50_ns" << YAML::Value << r.age_p50_ns;
-    out << YAML::Key << "age_p99_ns" << YAML::Value << r.age_p99_ns;
-    out << YAML::Key << "age_max_ns" << YAML::Value << r.age_max_ns;
-    out << YAML::EndMap;
-  }
-  out << YAML::EndSeq;
+  write_fields(out, report, kReportFields);
+  write_list(out, "published", report.published, kPublishedFields, true);
+  write_list(out, "received", report.received, kReceivedFields);
   out << YAML::Key << "impairment_seed" << YAML::Value << report.impairment_seed;
-  out << YAML::Key << "links" << YAML::Value << YAML::BeginSeq;
-  for (const auto& l : report.links) {
-    out << YAML::BeginMap;
-    out << YAML::Key << "to" << YAML::Value << l.to;
-    out << YAML::Key << "profile" << YAML::Value << l.profile;
-    out << YAML::Key << "messages" << YAML::Value << l.messages;
-    out << YAML::Key << "delivered" << YAML::Value << l.delivered;
-    out << YAML::Key << "lost" << YAML::Value << l.lost;
-    out << YAML::Key << "outage" << YAML::Value << l.outage;
-    out << YAML::Key << "queue" << YAML::Value << l.queue;
-    out << YAML::Key << "duplicated" << YAML::Value << l.duplicated;
-    out << YAML::Key << "reordered" << YAML::Value << l.reordered;
-    out << YAML::Key << "loss_burst_mean" << YAML::Value << l.loss_burst_mean;
-    out << YAML::Key << "loss_burst_max" << YAML::Value << l.loss_burst_max;
-    out << YAML::Key << "delay_p50_ns" << YAML::Value << l.delay_p50_ns;
-    out << YAML::Key << "delay_p99_ns" << YAML::Value << l.delay_p99_ns;
-    out << YAML::Key << "delay_max_ns" << YAML::Value << l.delay_max_ns;
-    out << YAML::Key << "configured_loss" << YAML::Value << l.configured_loss;
-    out << YAML::Key << "configured_delay_ns" << YAML::Value << l.configured_delay_ns;
-    out << YAML::EndMap;
-  }
-  out << YAML::EndSeq;
+  write_list(out, "links", report.links, kLinkFields);
   out << YAML::Key << "counters" << YAML::Value << YAML::BeginMap;
   for (const auto& [name, value] : report.counters) out << YAML::Key << name << YAML::Value << value;
   out << YAML::EndMap;
@@ -151,69 +230,12 @@ void write_report(const NodeReport& report, const std::string& path) {
 
 NodeReport read_report(const std::string& path) {
   const ConfigNode root = ConfigNode::load_file(path);
-  constexpr Range kAny{-1e18, 1e18};
-  constexpr Range kCount{0, 1e19};
   NodeReport r;
-  r.name = root.get_string("name");
-  r.role = root.get_string("role");
-  r.final_state = root.get_string("final_state");
-  r.rate_hz = root.get_double("rate_hz", kAny);
-  r.run_time_s = root.get_double("run_time_s", kAny);
-  r.cycles = static_cast<uint64_t>(root.get_double("cycles", kCount));
-  r.overruns = static_cast<uint64_t>(root.get_double("overruns", kCount));
-  r.skipped = static_cast<uint64_t>(root.get_double("skipped", kCount));
-  r.lateness_p50_ns = root.get_int("lateness_p50_ns", kAny);
-  r.lateness_p99_ns = root.get_int("lateness_p99_ns", kAny);
-  r.lateness_max_ns = root.get_int("lateness_max_ns", kAny);
-  r.shutdown_ms = root.get_double("shutdown_ms", kAny);
-  for (const auto& p : root.get_node_list("published")) {
-    r.published.push_back({p.get_string("topic"), static_cast<uint64_t>(p.get_double("sent", kCount)),
-                           static_cast<uint64_t>(p.get_double("failed", kCount))});
-  }
-  for (const auto& n : root.get_node_list("received")) {
-    ReceivedTopic t;
-    t.topic = n.get_string("topic");
-    t.received = static_cast<uint64_t>(n.get_double("received", kCount));
-    t.expected = static_cast<uint64_t>(n.get_double("expected", kCount));
-    t.lost = static_cast<uint64_t>(n.get_double("lost", kCount));
-    t.duplicates = static_cast<uint64_t>(n.get_double("duplicates", kCount));
-    t.reordered = static_cast<uint64_t>(n.get_double("reordered", kCount));
-    t.first_seq = static_cast<uint64_t>(n.get_double("first_seq", kCount));
-    t.last_seq = static_cast<uint64_t>(n.get_double("last_seq", kCount));
-    t.rate_hz = n.get_double("rate_hz", kAny);
-    t.latency_p50_ns = n.get_int("latency_p50_ns", kAny);
-    t.latency_p99_ns = n.get_int("latency_p99_ns", kAny);
-    t.latency_max_ns = n.get_int("latency_max_ns", kAny);
-    t.deadline_missed = static_cast<uint64_t>(n.get_double("deadline_missed", kCount));
-    t.liveliness_lost = static_cast<uint64_t>(n.get_double("liveliness_lost", kCount));
-    t.gap_max = static_cast<uint64_t>(n.get_double("gap_max", kCount, 0));
-    t.gap_mean = n.get_double("gap_mean", kAny, 0);
-    t.age_p50_ns = n.get_int("age_p50_ns", kAny, 0);
-    t.age_p99_ns = n.get_int("age_p99_ns", kAny, 0);
-    t.age_max_ns = n.get_int("age_max_ns", kAny, 0);
-    r.received.push_back(t);
-  }
+  read_fields(root, r, kReportFields);
+  r.published = read_list(root, "published", kPublishedFields);
+  r.received = read_list(root, "received", kReceivedFields);
   r.impairment_seed = static_cast<uint64_t>(root.get_double("impairment_seed", kCount, 0));
-  for (const auto& n : root.get_node_list("links")) {
-    ImpairedLink l;
-    l.to = n.get_string("to");
-    l.profile = n.get_string("profile");
-    l.messages = static_cast<uint64_t>(n.get_double("messages", kCount));
-    l.delivered = static_cast<uint64_t>(n.get_double("delivered", kCount));
-    l.lost = static_cast<uint64_t>(n.get_double("lost", kCount));
-    l.outage = static_cast<uint64_t>(n.get_double("outage", kCount));
-    l.queue = static_cast<uint64_t>(n.get_double("queue", kCount));
-    l.duplicated = static_cast<uint64_t>(n.get_double("duplicated", kCount));
-    l.reordered = static_cast<uint64_t>(n.get_double("reordered", kCount));
-    l.loss_burst_mean = n.get_double("loss_burst_mean", kAny);
-    l.loss_burst_max = static_cast<uint64_t>(n.get_double("loss_burst_max", kCount));
-    l.delay_p50_ns = n.get_int("delay_p50_ns", kAny);
-    l.delay_p99_ns = n.get_int("delay_p99_ns", kAny);
-    l.delay_max_ns = n.get_int("delay_max_ns", kAny);
-    l.configured_loss = n.get_double("configured_loss", kAny);
-    l.configured_delay_ns = n.get_int("configured_delay_ns", kAny);
-    r.links.push_back(l);
-  }
+  r.links = read_list(root, "links", kLinkFields);
   if (auto counters = root.optional_child("counters")) {
     for (const auto& key : counters->keys()) r.counters.emplace_back(key, counters->get_double(key, kAny));
   }

@@ -48,6 +48,35 @@ void apply_impair_overrides(const CommandLine& cli, transport::ParticipantConfig
   if (cli.seed) transport.impairment.seed = *cli.seed;
 }
 
+// what a numeric flag may be: a finite number in [min, max] (NaN and infinity never configure anything)
+CLI::Validator finite_in(double min, double max) {
+  return CLI::Validator(
+      [min, max](const std::string& text) -> std::string {
+        double v = 0.0;
+        if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v) || v < min || v > max) {
+          return "must be a finite number in [" + CLI::detail::to_string(min) + ", " + CLI::detail::to_string(max) +
+                 "], got " + text;
+        }
+        return {};
+      },
+      "NUMBER in [" + CLI::detail::to_string(min) + ", " + CLI::detail::to_string(max) + "]");
+}
+
+// the trace is preallocated for its whole window: a bound on its rows keeps a long run's
+// --trace from claiming the machine's memory (4e6 rows: 66 min at 1 kHz, ~1 GB at 30 columns)
+constexpr uint64_t kMaxTraceRows = 4'000'000;
+
+uint64_t trace_rows(const CommandLine& cli, const NodeConfig& node) {
+  const double seconds = cli.trace_seconds.value_or(node.duration_s > 0 ? node.duration_s : 60.0);
+  const double rows = std::ceil(seconds * node.rate_hz) + 1;
+  if (rows > static_cast<double>(kMaxTraceRows)) {
+    throw ConfigError("--trace-seconds: a trace of " + std::to_string(seconds) + " s at " + std::to_string(node.rate_hz) +
+                      " Hz needs " + std::to_string(static_cast<uint64_t>(rows)) + " rows; it keeps at most " +
+                      std::to_string(kMaxTraceRows) + ": give a shorter --trace-seconds");
+  }
+  return static_cast<uint64_t>(rows);
+}
+
 // everything parsed and validated before anything touches the network
 struct Setup {
   NodeConfig node;
@@ -65,6 +94,7 @@ Setup load_setup(const CommandLine& cli, const NodeDescription& description) {
   if (cli.duration_s) setup.node.duration_s = *cli.duration_s;
   if (cli.domain_id) setup.transport.domain_id = *cli.domain_id;
   apply_impair_overrides(cli, setup.transport);
+  if (!cli.trace_path.empty()) trace_rows(cli, setup.node);
   return setup;
 }
 
@@ -95,10 +125,9 @@ std::unique_ptr<TraceRecorder> make_trace_recorder(const CommandLine& cli, const
     spdlog::info("{}: this node has no trace columns: --trace {} writes nothing", node.name, cli.trace_path);
     return nullptr;
   }
-  const double seconds = cli.trace_seconds.value_or(node.duration_s > 0 ? node.duration_s : 60.0);
-  const auto rows = static_cast<uint64_t>(std::ceil(seconds * node.rate_hz)) + 1;
+  const uint64_t rows = trace_rows(cli, node);
   spdlog::info("{}: tracing {} columns, the most recent {} rows ({:.1f} s), into {}", node.name, columns.size(), rows,
-               seconds, cli.trace_path);
+               static_cast<double>(rows - 1) / node.rate_hz, cli.trace_path);
   return std::make_unique<TraceRecorder>(std::move(columns), rows);
 }
 
@@ -178,8 +207,9 @@ int run_node(int argc, char** argv, const NodeDescription& description) {
   CLI::App app{description.summary, "teleop_" + description.role_name};
   CommandLine cli;
   app.add_option("-c,--config", cli.config_path, "YAML configuration of this node")->required();
+  // the same bound as node.duration_s in the file
   app.add_option("-d,--duration", cli.duration_s, "run time in seconds (overrides node.duration_s; 0 = until signalled)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_in(0, 1e6));
   app.add_option("--domain", cli.domain_id, "DDS domain id (overrides transport.domain_id)")->check(CLI::Range(0, 232));
   app.add_option("-r,--report", cli.report_path, "write the run's statistics as YAML to this file at exit");
   app.add_option("--impair", cli.impair,
@@ -193,7 +223,7 @@ int run_node(int argc, char** argv, const NodeDescription& description) {
                  "write the node's time trace (CSV, t_s = CLOCK_MONOTONIC) to this file at exit");
   app.add_option("--trace-seconds", cli.trace_seconds,
                  "keep the most recent S seconds of trace (default: the run's duration, else 60)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_in(1e-3, 1e6));
   app.add_option("--log-level", cli.log_level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
   try {

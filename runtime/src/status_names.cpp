@@ -21,6 +21,7 @@ const char* fault_name(uint32_t fault_code) {
     case msg::FAULT_COMMAND_REJECTED: return "command_rejected";
     case msg::FAULT_LOOP_OVERRUN: return "loop_overrun";
     case msg::FAULT_HARDWARE: return "hardware";
+    case msg::FAULT_CONTACT_REFLEX: return "contact_reflex";
   }
   return "unknown_fault";
 }

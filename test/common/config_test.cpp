@@ -390,5 +390,49 @@ TEST(ConfigNode, NamesFileWhenFileTopLevelIsNotAMapping) {
   EXPECT_EQ(error_of([&] { ConfigNode::load_file(empty); }), empty + ": the top level must be a mapping of keys");
 }
 
+// ---- what a file cannot mean (issue 16) ----
+
+TEST(ConfigNode, RejectsAKeyGivenTwiceNamingBothLines) {
+  // the first value would win silently and the second would never be range-checked
+  EXPECT_EQ(error_of([] { load("follower:\n  command_timeout_ms: 60000\n  command_timeout_ms: 20\n"); }),
+            "test.yaml:3: follower.command_timeout_ms: duplicate key (first given on line 2)");
+  EXPECT_EQ(error_of([] { load("a: 1\nb: 2\na: 3\n"); }), "test.yaml:3: a: duplicate key (first given on line 1)");
+}
+
+TEST(ConfigNode, RejectsAKeyGivenTwiceInsideAListItem) {
+  EXPECT_EQ(error_of([] { load("runs:\n  - name: a\n    name: b\n"); }),
+            "test.yaml:3: runs[0].name: duplicate key (first given on line 2)");
+}
+
+TEST(ConfigNode, RejectsAKeyThatIsNotAPlainName) {
+  EXPECT_EQ(error_of([] { load("node:\n  [a, b]: 1\n"); }), "test.yaml:2: node: a key must be a plain name, got a list");
+  EXPECT_EQ(error_of([] { load("? {a: 1}\n: 2\n"); }), "test.yaml:1: (top level): a key must be a plain name, got a mapping");
+}
+
+TEST(ConfigNode, RejectsADuplicateOrNonScalarKeyInAnOverride) {
+  ConfigNode c = load("node: {}\n");
+  EXPECT_EQ(error_of([&] { c.apply_override("node={a: 1, a: 2}"); }),
+            "test.yaml (--set node={a: 1, a: 2}):1: node.a: duplicate key (first given on line 1)");
+}
+
+TEST(ConfigNode, NamesTheFolderWhenAFolderIsGivenAsTheFile) {
+  TempDir dir("teleop_config_test");
+  EXPECT_EQ(error_of([&] { ConfigNode::load_file(dir.path("")); }),
+            dir.path("") + ": is a folder, not a configuration file");
+}
+
+TEST(ConfigNode, ReadsABoundOrOffAndRefusesAZeroThatWouldSwitchTheCheckOff) {
+  const ConfigNode c = load("a: 500\nb: off\nc: 0\nd: -3\ne: x\n");
+  constexpr Range kPositive{1, 60'000};
+  EXPECT_EQ(c.get_bound_or_off("a", kPositive, 7), 500.0);
+  EXPECT_TRUE(std::isinf(c.get_bound_or_off("b", kPositive, 7)));
+  EXPECT_EQ(c.get_bound_or_off("absent", kPositive, 7), 7.0);
+  EXPECT_EQ(error_of([&] { c.get_bound_or_off("c", kPositive, 7); }),
+            "test.yaml:3: c: 0 would switch the check off: write off if that is meant");
+  EXPECT_EQ(error_of([&] { c.get_bound_or_off("d", kPositive, 7); }), "test.yaml:4: d: value -3 is out of range [1, 60000]");
+  EXPECT_EQ(error_of([&] { c.get_bound_or_off("e", kPositive, 7); }), "test.yaml:5: e: expected a number or off, got 'x'");
+  c.check_all_used();
+}
+
 }  // namespace
 }  // namespace teleop

@@ -179,3 +179,36 @@ TEST(SequenceTracker, RecordsZeroLatencyWhenClocksMakeItNegative) {
 
 }  // namespace
 }  // namespace teleop
+
+namespace teleop {
+namespace {
+
+TEST(SequenceTrackerSessions, AddsUpTheSessionsOfARestartedWriter) {
+  SequenceTracker t;
+  for (uint64_t s = 1; s <= 8000; ++s) t.on_sample(s, 0, 0);
+  // the writer restarted: its successor numbers from 1 again, and loses samples 3 and 4
+  t.begin_session();
+  for (uint64_t s : {1, 2, 5, 6}) t.on_sample(s, 0, 0);
+  EXPECT_EQ(t.sessions(), 2u);
+  EXPECT_EQ(t.received(), 8004u);
+  EXPECT_EQ(t.expected(), 8006u);
+  EXPECT_EQ(t.lost(), 2u);
+  EXPECT_EQ(t.first_seq(), 1u);
+  EXPECT_EQ(t.last_seq(), 6u);
+  EXPECT_EQ(t.duplicates(), 0u);
+}
+
+TEST(SequenceTrackerSessions, ABeginWithoutSamplesChangesNothing) {
+  SequenceTracker t;
+  t.begin_session();
+  feed(t, {1, 2, 3});
+  t.begin_session();
+  t.begin_session();
+  feed(t, {1});
+  EXPECT_EQ(t.sessions(), 2u);
+  EXPECT_EQ(t.expected(), 4u);
+  EXPECT_EQ(t.lost(), 0u);
+}
+
+}  // namespace
+}  // namespace teleop

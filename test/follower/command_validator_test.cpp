@@ -94,6 +94,7 @@ TEST(CommandValidator, NamesEveryIssue) {
   EXPECT_EQ(std::string(to_string(CommandIssue::kWrongSize)), "rejected_wrong_size");
   EXPECT_EQ(std::string(to_string(CommandIssue::kNonFinite)), "rejected_non_finite");
   EXPECT_EQ(std::string(to_string(CommandIssue::kSequenceOld)), "rejected_old_sequence");
+  EXPECT_EQ(std::string(to_string(CommandIssue::kUnknownMode)), "rejected_unknown_mode");
   EXPECT_EQ(std::string(to_string(CommandIssue::kPositionLimit)), "clamped_position");
   EXPECT_EQ(std::string(to_string(CommandIssue::kVelocityLimit)), "clamped_velocity");
   EXPECT_EQ(std::string(to_string(CommandIssue::kGainLimit)), "clamped_gain");
@@ -361,7 +362,7 @@ TEST(CommandValidator, RejectsCommandsStampedTooLongAgoOrTooFarAhead) {
 
 TEST(CommandValidator, AcceptsAnyAgeWhenTheCheckIsOff) {
   JointLimits l = limits();
-  l.max_command_age_s = 0;
+  l.max_command_age_s = kInf;  // `off` in the file
   CommandValidator v(kJoints, l);
   ValidCommand out;
   msg::JointCommand old = valid_command(1);
@@ -464,6 +465,32 @@ TEST(CommandValidator, TracksCartesianSequenceNumbersApartFromJointOnes) {
   EXPECT_EQ(v.validate(valid_cartesian(1), kNow, out), CommandVerdict::kAccepted) << "another writer, its own numbers";
   EXPECT_EQ(v.validate(valid_cartesian(1), kNow, out), CommandVerdict::kRejected);
   EXPECT_EQ(v.count(CommandIssue::kSequenceOld), 1u);
+}
+
+TEST(CommandValidator, ComparesSequenceNumbersWithinASessionOnly) {
+  // a restarted leader numbers from 1 again: its first command is taken, its predecessor's
+  // numbers do not count against it
+  CommandValidator v(kJoints, limits());
+  ValidCommand out;
+  ASSERT_EQ(v.validate(valid_command(8000), kNow, out, 1), CommandVerdict::kAccepted);
+  EXPECT_EQ(v.validate(valid_command(1), kNow, out, 2), CommandVerdict::kAccepted);
+  EXPECT_EQ(v.validate(valid_command(2), kNow, out, 2), CommandVerdict::kAccepted);
+  EXPECT_EQ(v.validate(valid_command(2), kNow, out, 2), CommandVerdict::kRejected);
+  EXPECT_EQ(v.validate(valid_command(0), kNow, out, 3), CommandVerdict::kRejected);
+  EXPECT_EQ(v.count(CommandIssue::kSequenceOld), 2u);
+}
+
+TEST(CommandValidator, RejectsAndCountsAControlModeOutsideTheEnum) {
+  CommandValidator v(kJoints, limits());
+  ValidCommand out = marked();
+  msg::JointCommand cmd = valid_command(1);
+  cmd.mode()[1] = static_cast<msg::ControlMode>(77);
+  EXPECT_EQ(v.validate(cmd, kNow, out), CommandVerdict::kRejected);
+  expect_untouched(out);
+  cmd.mode().assign(kJoints, static_cast<msg::ControlMode>(-1));
+  EXPECT_EQ(v.validate(cmd, kNow, out), CommandVerdict::kRejected);
+  EXPECT_EQ(v.count(CommandIssue::kUnknownMode), 2u);
+  EXPECT_EQ(v.count(CommandIssue::kMixedModes), 0u);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "teleop/common/joint_config.h"
+#include "teleop/sim/model_config.h"
 
 namespace teleop::twin {
 
@@ -57,7 +58,7 @@ std::array<double, 3> read_direction(const ConfigNode& section, const std::strin
 
 TwinModelConfig read_twin_model_config(const ConfigNode& section) {
   TwinModelConfig c;
-  c.model_path = section.get_path("file");
+  c.model_path = sim::get_model_path(section, "file");
   c.keyframe = section.get_string("keyframe", "");
   c.coupling_stiffness_nm_per_rad = section.get_double("coupling_stiffness_nm_per_rad", Range{0, 1e5}, c.coupling_stiffness_nm_per_rad);
   c.coupling_damping_nms_per_rad = section.get_double("coupling_damping_nms_per_rad", Range{0, 1e4}, c.coupling_damping_nms_per_rad);

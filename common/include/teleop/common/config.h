@@ -30,7 +30,9 @@ struct Range {
 /// Configuration time only: allocates and throws ConfigError.
 class ConfigNode {
  public:
-  /// Parses a YAML file whose top level must be a mapping.
+  /// Parses a YAML file whose top level must be a mapping. Every failure (no such file, a
+  /// folder, unreadable, malformed YAML, a key that is not a plain scalar, a key given twice in
+  /// one mapping) throws ConfigError naming the file (and line).
   static ConfigNode load_file(const std::string& path);
   /// Parses YAML text; `source_name` stands in for the file name in errors.
   static ConfigNode load_string(const std::string& text, const std::string& source_name);
@@ -61,6 +63,11 @@ class ConfigNode {
   bool get_bool(const std::string& key, bool fallback) const;
   int64_t get_int(const std::string& key, Range range, int64_t fallback) const;
   double get_double(const std::string& key, Range range, double fallback) const;
+
+  /// Optional bound of a safety check: a number in `range` (whose minimum is above 0), or `off`,
+  /// which returns +infinity (no bound). A 0 is refused with a hint to write `off`: a check is
+  /// never switched off by a number.
+  double get_bound_or_off(const std::string& key, Range range, double fallback) const;
 
   /// The value of a required key as one line of YAML in flow style (`abc`, `[1, 2]`, `{a: 1}`),
   /// for passing it on unparsed (e.g. as a `--set` argument).

@@ -7,19 +7,27 @@
 
 namespace teleop {
 
-/// Tracks one writer's stream as seen by a reader: received, lost (sequence gaps),
-/// duplicated or reordered samples, one-way latency, and the receive rate. Real-time safe.
+/// Tracks a stream as seen by a reader: received, lost (sequence gaps), duplicated or reordered
+/// samples, one-way latency, and the receive rate. Sequence numbers count within a session (one
+/// writer, stream_session.h); the counts add up over the sessions. Real-time safe.
 class SequenceTracker {
  public:
+  /// The next sample starts a new session: its sequence numbers are not compared with this
+  /// session's, whose counts are kept.
+  void begin_session();
+
   /// Records a received sample: its sequence number, its source stamp and the local receive
   /// time, both on the same clock (the latency is their difference).
   void on_sample(uint64_t seq, int64_t source_stamp_ns, int64_t receive_stamp_ns);
 
   uint64_t received() const { return received_; }
+  /// The current session's first and last sequence numbers received.
   uint64_t first_seq() const { return first_seq_; }
   uint64_t last_seq() const { return last_seq_; }
-  /// Samples the writer sent between the first and the last one received.
-  uint64_t expected() const { return received_ ? last_seq_ - first_seq_ + 1 : 0; }
+  /// Samples the writers sent between the first and the last one received, summed over sessions.
+  uint64_t expected() const { return expected_before_ + (session_received_ ? last_seq_ - first_seq_ + 1 : 0); }
+  /// Sessions seen (writers followed in turn).
+  uint64_t sessions() const { return sessions_; }
   /// Samples never received within [first_seq, last_seq] (late arrivals are credited back).
   uint64_t lost() const;
   uint64_t duplicates() const { return duplicates_; }
@@ -33,6 +41,9 @@ class SequenceTracker {
 
  private:
   uint64_t received_ = 0;
+  uint64_t session_received_ = 0;
+  uint64_t expected_before_ = 0;
+  uint64_t sessions_ = 0;
   uint64_t first_seq_ = 0;
   uint64_t last_seq_ = 0;
   uint64_t duplicates_ = 0;

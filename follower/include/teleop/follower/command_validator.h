@@ -21,7 +21,7 @@ struct JointLimits {
   /// Per joint; the torque saturation of the output uses the same values.
   JointVector max_torque_nm = filled(80.0);
   /// Commands stamped longer ago than this (CLOCK_REALTIME of the sender) are rejected; the
-  /// same bound applies to stamps in the future (clock skew). 0 switches the check off.
+  /// same bound applies to stamps in the future (clock skew). Infinite: no check (`off` in YAML).
   double max_command_age_s = 0.5;
   // Cartesian commands, in the arm's base frame
   std::array<double, 3> workspace_min_m{-1.0, -1.0, -0.2};
@@ -45,7 +45,8 @@ enum class CommandVerdict { kAccepted, kClamped, kRejected };
 enum class CommandIssue : size_t {
   kWrongSize,       ///< a joint sequence does not have one value per joint
   kNonFinite,       ///< NaN or Inf anywhere
-  kSequenceOld,     ///< sequence number not newer than the last accepted one
+  kSequenceOld,     ///< sequence number not newer than the last accepted one of its session
+  kUnknownMode,     ///< a control mode outside msg::ControlMode
   kStale,           ///< stamped longer ago (or further ahead) than max_command_age_s
   kMixedModes,      ///< joints asking for different control modes (one mode per arm)
   kBadOrientation,  ///< a Cartesian orientation that is not a rotation (|q| far from 1)
@@ -83,9 +84,14 @@ class CommandValidator {
 
   /// Validates `cmd` into `out` (all fields of a joint command). Real-time safe. `out` is only
   /// written when not rejected. `now_system_ns`: CLOCK_REALTIME now, for the age check.
-  [[nodiscard]] CommandVerdict validate(const msg::JointCommand& cmd, int64_t now_system_ns, ValidCommand& out);
+  /// `session`: the writer session the command came in (transport::Subscription::session());
+  /// sequence numbers are compared within one session only, so a restarted sender's commands
+  /// (numbered from 1 again) are taken from its first.
+  [[nodiscard]] CommandVerdict validate(const msg::JointCommand& cmd, int64_t now_system_ns, ValidCommand& out,
+                                        uint64_t session = 1);
   /// The same for a Cartesian command: writes the Cartesian fields and sets the mode.
-  [[nodiscard]] CommandVerdict validate(const msg::CartesianCommand& cmd, int64_t now_system_ns, ValidCommand& out);
+  [[nodiscard]] CommandVerdict validate(const msg::CartesianCommand& cmd, int64_t now_system_ns, ValidCommand& out,
+                                        uint64_t session = 1);
 
   uint64_t count(CommandIssue issue) const { return counts_[static_cast<size_t>(issue)]; }
   uint64_t rejected() const { return rejected_; }
@@ -100,10 +106,21 @@ class CommandValidator {
   CommandVerdict reject(CommandIssue reason);
   double clamp_counted(double v, double lo, double hi, CommandIssue issue, bool& clamped);
 
+  /// The newest command accepted from one stream: its session and sequence number.
+  struct StreamPosition {
+    uint64_t session = 0;
+    uint64_t seq = 0;
+    /// True when `seq_of` of `session_of` is not newer than this position (a writer numbers from
+    /// 1: a 0 is never newer).
+    bool not_newer(uint64_t session_of, uint64_t seq_of) const {
+      return seq_of == 0 || (session_of == session && seq_of <= seq);
+    }
+  };
+
   size_t joints_;
   JointLimits limits_;
-  uint64_t last_joint_seq_ = 0;
-  uint64_t last_cartesian_seq_ = 0;
+  StreamPosition last_joint_;
+  StreamPosition last_cartesian_;
   uint64_t rejected_ = 0;
   std::array<uint64_t, static_cast<size_t>(CommandIssue::kCount)> counts_{};
 };

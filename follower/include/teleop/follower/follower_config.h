@@ -9,6 +9,7 @@
 #include "teleop/common/config.h"
 #include "teleop/follower/arm_control.h"
 #include "teleop/follower/command_validator.h"
+#include "teleop/follower/contact_reflex.h"
 #include "teleop/follower/mujoco_hardware.h"
 
 namespace teleop::follower {
@@ -32,7 +33,7 @@ struct FollowerConfig {
   enum class CommandSource { kLeader, kTwin } command_source = CommandSource::kLeader;
   /// Command limits; the torque limits are further bounded by what the hardware reports.
   JointLimits limits;
-  /// Largest change of commanded torque per second (0: none).
+  /// Largest change of commanded torque per second (infinite: none, `off` in YAML).
   double max_torque_rate_nm_per_s = 1000.0;
   /// No valid command for this long: hold the current pose (watchdog).
   double command_timeout_s = 0.02;
@@ -40,6 +41,8 @@ struct FollowerConfig {
   double hold_stiffness_nm_per_rad = 200.0;
   double hold_damping_nms_per_rad = 20.0;
   ArmControlConfig control;
+  /// The collision reflex on the external-load estimate (contact_reflex.h).
+  ContactReflexConfig contact_reflex;
   /// A two-arm follower on the box scene traces the box task's quantities (box_task_trace.h).
   bool trace_box_task = false;
   /// Objects of the shared scene whose measured pose goes to the twin (object_pose_feed.h).

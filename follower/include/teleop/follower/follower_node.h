@@ -10,7 +10,9 @@
 
 #include "teleop/common/error_stats.h"
 #include "teleop/follower/arm_control.h"
+#include "teleop/follower/contact_reflex.h"
 #include "teleop/follower/follower_config.h"
+#include "teleop/follower/joint_rejoin.h"
 #include "teleop/follower/passive_reference.h"
 #include "teleop/follower/robot_hardware.h"
 #include "teleop/follower/torque_limiter.h"
@@ -45,9 +47,14 @@ class FollowerNode final : public runtime::NodeLogic {
 
  private:
   void take_commands(int64_t now_ns);
+  /// Counts a valid command from `session` of its stream; a new session clears the reflex.
+  void on_valid_command(uint64_t session, uint64_t& last_session, uint64_t seq, int64_t now_ns);
+  void take_reset_requests();
   void run_watchdog(int64_t now_ns);
+  void run_reflex();
   bool source_lost(double silence_s) const;
-  void hold_current_pose();
+  /// Makes `hold` a joint impedance at the current pose with these gains.
+  void hold_current_pose(ValidCommand& hold, double stiffness, double damping);
   void apply_passivity();
   void command_torque(const ValidCommand& command);
   void record_metrics();
@@ -60,6 +67,9 @@ class FollowerNode final : public runtime::NodeLogic {
   TorqueLimiter limiter_;
   transport::Subscription<msg::JointCommand> joint_commands_;
   transport::Subscription<msg::CartesianCommand> cartesian_commands_;
+  transport::Reader<msg::ResetRequest> reset_requests_;
+  msg::ResetRequest reset_request_;
+  std::string name_;
   transport::Publication<msg::JointState> state_pub_;
   transport::Publication<msg::WrenchStamped> wrench_pub_;
   ArmState arm_{};
@@ -70,6 +80,16 @@ class FollowerNode final : public runtime::NodeLogic {
   std::optional<PassiveReference> passive_;
   ValidCommand corrected_{};
   const ValidCommand* controlled_ = &active_;
+  ContactReflex reflex_;
+  ValidCommand reflex_hold_{};
+  JointRejoin rejoin_;
+  JointVector held_q_rad_{};
+  // the command sessions (writers followed in turn) of the joint and Cartesian streams
+  uint64_t joint_session_ = 0;
+  uint64_t cartesian_session_ = 0;
+  uint64_t command_sessions_ = 0;
+  uint64_t command_seq_ = 0;  // of the last valid command
+  uint64_t resets_ = 0;
   // which source gave the last valid command, and its liveliness losses then
   enum class Source { kNone, kJoint, kCartesian } source_ = Source::kNone;
   uint64_t liveliness_lost_at_command_ = 0;

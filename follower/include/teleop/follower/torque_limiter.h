@@ -12,7 +12,7 @@ namespace teleop::follower {
 
 class TorqueLimiter {
  public:
-  /// `max_rate_nm_per_s` <= 0: no rate limit.
+  /// `max_rate_nm_per_s` infinite (or <= 0): no rate limit.
   TorqueLimiter(size_t joints, const JointVector& max_torque_nm, double max_rate_nm_per_s, double cycle_s);
 
   /// Limits `tau` in place (total link-side torque). Real-time safe.

@@ -19,7 +19,7 @@ struct FeedbackConfig {
     v.fill(20.0);
     return v;
   }();
-  /// Largest change per second of the rendered torque (0: none).
+  /// Largest change per second of the rendered torque (infinite or 0: none; `off` in YAML).
   double max_rate_nm_per_s = 500.0;
   /// Time to fade the feedback to zero (source lost, clutch) and back.
   double fade_s = 0.2;

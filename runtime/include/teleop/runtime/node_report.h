@@ -20,7 +20,7 @@ struct PublishedTopic {
 struct ReceivedTopic {
   std::string topic;
   uint64_t received = 0;
-  uint64_t expected = 0;  ///< last_seq - first_seq + 1
+  uint64_t expected = 0;  ///< last_seq - first_seq + 1, summed over the sessions
   uint64_t lost = 0;
   uint64_t duplicates = 0;
   uint64_t reordered = 0;
@@ -39,6 +39,11 @@ struct ReceivedTopic {
   int64_t age_p50_ns = 0;
   int64_t age_p99_ns = 0;
   int64_t age_max_ns = 0;
+  /// Writers followed in turn (a restarted peer opens a new session), and samples refused:
+  /// another writer's while the followed one talked, or a sequence number that leapt.
+  uint64_t sessions = 0;
+  uint64_t refused_other_writer = 0;
+  uint64_t refused_sequence_jump = 0;
 };
 
 /// What the impairment did to one outgoing link of the node.
@@ -94,14 +99,15 @@ struct NodeReport {
   template <typename T>
   void add(const transport::Subscription<T>& sub) {
     received.push_back(received_from(sub.topic_name(), sub.stats(), sub.age(), sub.reader().deadline_missed(),
-                                     sub.reader().liveliness_lost()));
+                                     sub.reader().liveliness_lost(), sub.session()));
   }
 
   /// Adds the participant's impaired links.
   void add_links(const transport::Participant& participant);
 
   static ReceivedTopic received_from(const std::string& topic, const SequenceTracker& stats,
-                                     const DurationHistogram& age, uint64_t deadline_missed, uint64_t liveliness_lost);
+                                     const DurationHistogram& age, uint64_t deadline_missed, uint64_t liveliness_lost,
+                                     const StreamSession& session = StreamSession{});
 };
 
 /// Writes the report as YAML. Throws std::runtime_error when the file cannot be written.

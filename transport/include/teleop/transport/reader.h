@@ -4,6 +4,9 @@
 #include <fastdds/dds/subscriber/DataReader.hpp>
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 
+#include <cstring>
+
+#include "teleop/common/stream_session.h"
 #include "teleop/transport/endpoint_status.h"
 
 namespace teleop::transport {
@@ -14,15 +17,19 @@ class Reader {
   Reader() = default;
   Reader(eprosima::fastdds::dds::DataReader* reader, const EndpointStatus* status) : reader_(reader), status_(status) {}
 
-  /// Non-blocking: moves the oldest unread sample into `out` and the time DDS received it
-  /// (CLOCK_REALTIME ns) into `reception_ns`. Returns false when there is none.
-  /// Does not allocate once `out`'s sequences have reached their working size.
-  [[nodiscard]] bool take_next(T& out, int64_t& reception_ns) {
+  /// Non-blocking: moves the oldest unread sample into `out`, the time DDS received it
+  /// (CLOCK_REALTIME ns) into `reception_ns` and the DataWriter that wrote it into `writer`.
+  /// Returns false when there is none. Does not allocate once `out`'s sequences have reached
+  /// their working size.
+  [[nodiscard]] bool take_next(T& out, int64_t& reception_ns, WriterId& writer) {
     eprosima::fastdds::dds::SampleInfo info;
     while (reader_->take_next_sample(&out, &info) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
       // skip state-only notifications (e.g. a writer's disposal) that carry no data
       if (info.valid_data) {
         reception_ns = info.reception_timestamp.to_ns();
+        // the publication handle is the writer's GUID
+        const eprosima::fastrtps::rtps::octet* guid = info.publication_handle.value;
+        std::memcpy(writer.bytes.data(), guid, writer.bytes.size());
         return true;
       }
     }
@@ -31,7 +38,8 @@ class Reader {
 
   [[nodiscard]] bool take_next(T& out) {
     int64_t ignored = 0;
-    return take_next(out, ignored);
+    WriterId writer;
+    return take_next(out, ignored, writer);
   }
 
   /// Blocks until an unread sample is there (true) or `timeout_ns` passed (false). For lock-step

@@ -52,6 +52,8 @@ inline constexpr const char* kTwinContactWrenchPrefix = "teleop/twin/contact_wre
 // step n; reliable, every sample counts
 inline constexpr TopicSpec<msg::JointState> kLockstepState{"teleop/lockstep/state", QosPreset::kEvent};
 inline constexpr TopicSpec<msg::JointCommand> kLockstepCommand{"teleop/lockstep/command", QosPreset::kEvent};
+// an operator's reset of a node's latched faults, one topic for all nodes (the target says whom)
+inline constexpr TopicSpec<msg::ResetRequest> kResetRequest{"teleop/reset", QosPreset::kEvent};
 // node health, one topic for all nodes (the header's source says who)
 inline constexpr TopicSpec<msg::NodeStatus> kNodeStatus{"teleop/node_status", QosPreset::kState};
 
