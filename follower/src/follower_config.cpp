@@ -4,6 +4,7 @@
 
 #include "teleop/common/joint_config.h"
 #include "teleop/control/types.h"
+#include "teleop/runtime/arm_configs.h"
 #include "teleop/sim/model_config.h"
 
 namespace teleop::follower {
@@ -40,17 +41,20 @@ void read_cartesian_limits(const ConfigNode& s, JointLimits& l) {
   l.max_angular_velocity_radps = s.get_double("max_angular_velocity_radps", Range{0.001, 20}, l.max_angular_velocity_radps);
 }
 
-// `contact_reflex: off`, or a mapping of thresholds (contact_reflex.h); absent: the defaults
-ContactReflexConfig read_contact_reflex(const ConfigNode& s, size_t n) {
-  ContactReflexConfig r;
-  if (!s.has("contact_reflex")) return r;
-  if (s.get_yaml("contact_reflex") == "off") {
+// `reflex: off`, or a mapping of thresholds (safety_reflex.h); absent: the Panda's own
+SafetyReflexConfig read_reflex(const ConfigNode& s, size_t n) {
+  SafetyReflexConfig r;
+  if (!s.has("reflex")) return r;
+  if (s.get_yaml("reflex") == "off") {
     r.enabled = false;
     return r;
   }
-  const ConfigNode c = s.child("contact_reflex");
-  r.joint_torque_nm = read_joint_list(c, "joint_torque_nm", n, Range{0.1, 1e4}, 20.0);
-  if (!c.has("joint_torque_nm")) r.joint_torque_nm = ContactReflexConfig{}.joint_torque_nm;
+  const ConfigNode c = s.child("reflex");
+  const auto per_joint = [&](const char* key, Range range, const JointVector& fallback) {
+    return c.has(key) ? read_joint_list(c, key, n, range, 0.0) : fallback;
+  };
+  r.joint_torque_nm = per_joint("joint_torque_nm", Range{0.1, 1e4}, r.joint_torque_nm);
+  r.joint_velocity_radps = per_joint("joint_velocity_radps", Range{0.01, 100}, r.joint_velocity_radps);
   r.force_n = read_vector3(c, "force_n", Range{0.1, 1e5}, r.force_n);
   r.torque_nm = read_vector3(c, "torque_nm", Range{0.1, 1e4}, r.torque_nm);
   r.hold_stiffness_nm_per_rad = c.get_double("hold_stiffness_nm_per_rad", Range{0, 1e4}, r.hold_stiffness_nm_per_rad);
@@ -75,6 +79,22 @@ ArmControlConfig read_control(const ConfigNode& c, size_t n, bool per_arm) {
                          : source == "hardware" ? ExternalTorqueSource::kHardware
                                                 : ExternalTorqueSource::kMomentumObserver;
   return a;
+}
+
+
+// an arm's own keys on top of the shared `follower:` section
+FollowerConfig arm_config(const FollowerConfig& shared, const std::string& name, const ConfigNode& a) {
+  FollowerConfig c = shared;
+  c.arm = name;
+  c.mujoco.joint_prefix = a.get_string("joint_prefix");
+  c.mujoco.ee_site = a.get_string("ee_site");
+  c.control.model_path = sim::get_model_path(a, "control_model");
+  c.control.ee_site = c.mujoco.ee_site;
+  if (a.has("rest_posture_rad")) {
+    const JointVector rest = read_joint_list(a, "rest_posture_rad", c.joints, kJointAngleRange, 0.0);
+    c.control.rest_posture_rad = Eigen::Map<const control::JointVector>(rest.data());
+  }
+  return c;
 }
 
 }  // namespace
@@ -108,10 +128,11 @@ FollowerConfig parse_follower_config(const ConfigNode& root) {
   read_cartesian_limits(s, c.limits);
   c.max_torque_rate_nm_per_s = s.get_bound_or_off("max_torque_rate_nm_per_s", Range{1, 1e6}, c.max_torque_rate_nm_per_s);
   c.command_timeout_s = s.get_double("command_timeout_ms", Range{1, 60'000}, c.command_timeout_s * 1e3) * 1e-3;
+  c.rejoin_speed_radps = s.get_double("rejoin_speed_radps", Range{0.01, 10}, c.rejoin_speed_radps);
   c.hold_stiffness_nm_per_rad = s.get_double("hold_stiffness_nm_per_rad", Range{0, 1e5}, c.hold_stiffness_nm_per_rad);
   c.hold_damping_nms_per_rad = s.get_double("hold_damping_nms_per_rad", Range{0, 1e4}, c.hold_damping_nms_per_rad);
   c.control = read_control(s.child("control"), c.joints, s.has("arms"));
-  c.contact_reflex = read_contact_reflex(s, c.joints);
+  c.reflex = read_reflex(s, c.joints);
   c.trace_box_task = s.get_bool("trace_box_task", false);
   if (c.trace_box_task && !s.has("arms")) throw s.error("trace_box_task", "needs the two arms of follower.arms");
   if (s.has("tracked_objects")) {
@@ -120,6 +141,10 @@ FollowerConfig parse_follower_config(const ConfigNode& root) {
     c.tracked_objects.rate_hz = s.get_double("tracked_object_rate_hz", Range{1, 1000}, c.tracked_objects.rate_hz);
   }
   return c;
+}
+
+std::vector<FollowerConfig> parse_follower_arms(const ConfigNode& root) {
+  return runtime::read_arm_configs(root.child("follower"), parse_follower_config(root), arm_config);
 }
 
 }  // namespace teleop::follower

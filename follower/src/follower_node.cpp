@@ -64,8 +64,8 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<RobotHa
                  context.node.name),
       wrench_pub_(context.participant, transport::arm_topic(transport::topics::kFollowerWrench, config.arm),
                   context.node.name),
-      reflex_(config.contact_reflex),
-      rejoin_(config.joints, validator_.limits().max_velocity_radps, 1.0 / context.node.rate_hz) {
+      reflex_(config.reflex),
+      rejoin_(config.joints, config.rejoin_speed_radps, 1.0 / context.node.rate_hz) {
   if (hardware_->joints() != config.joints) {
     throw std::runtime_error("follower.joints is " + std::to_string(config.joints) + " but the robot (" +
                              hardware_->name() + ") has " + std::to_string(hardware_->joints()) + " joints");
@@ -187,10 +187,11 @@ void FollowerNode::run_watchdog(int64_t now_ns) {
 
 void FollowerNode::run_reflex() {
   if (state_ == msg::STATE_FAULT) return;
-  if (!reflex_.check(control_.external_torque(), control_.wrench())) return;
+  const auto dq = Eigen::Map<const control::JointVector>(arm_.dq_radps.data());
+  if (!reflex_.check(control_.external_torque(), control_.wrench(), dq)) return;
   // tripped: stop moving into the contact, yield to it, and tell the operator
   state_ = msg::STATE_SAFE_HOLD;
-  const ContactReflexConfig& r = reflex_.config();
+  const SafetyReflexConfig& r = reflex_.config();
   hold_current_pose(reflex_hold_, r.hold_stiffness_nm_per_rad, r.hold_damping_nms_per_rad);
   if (passive_) passive_->reset();
 }
@@ -256,6 +257,8 @@ void FollowerNode::publish_state() {
 
   const control::Vector6& w = control_.wrench();
   peak_external_force_n_ = std::max(peak_external_force_n_, w.head<3>().norm());
+  peak_external_moment_nm_ = std::max(peak_external_moment_nm_, w.tail<3>().norm());
+  peak_external_joint_torque_nm_ = std::max(peak_external_joint_torque_nm_, ext.head(static_cast<Eigen::Index>(n)).cwiseAbs().maxCoeff());
   transport::set_wrench(wrench_pub_.sample(), w.data(), w.data() + 3);
   wrench_pub_.publish();
 }
@@ -285,7 +288,7 @@ void FollowerNode::cycle(const CycleTick& tick) {
 void FollowerNode::active_faults(std::vector<uint32_t>& faults) const {
   if (hardware_faults_ > 0) faults.push_back(msg::FAULT_HARDWARE);
   if (reflex_.latched()) {
-    faults.push_back(msg::FAULT_CONTACT_REFLEX);
+    faults.push_back(reflex_.fault_code());
   } else if (state_ == msg::STATE_SAFE_HOLD) {
     faults.push_back(liveliness_trips_ > 0 ? msg::FAULT_PEER_LOST : msg::FAULT_STALE_INPUT);
   }
@@ -315,10 +318,15 @@ void FollowerNode::fill_report(runtime::NodeReport& report) const {
   counter("observer_vs_hardware_rms_nm", observer_vs_hardware_.rms());
   counter("direct_vs_hardware_rms_nm", direct_vs_hardware_.rms());
   counter("peak_external_force_n", peak_external_force_n_);
+  counter("peak_external_moment_nm", peak_external_moment_nm_);
+  counter("peak_external_joint_torque_nm", peak_external_joint_torque_nm_);
   counter("command_sessions", static_cast<double>(command_sessions_));
   counter("rejoins", static_cast<double>(rejoin_.rejoins()));
   counter("reflex_trips", static_cast<double>(reflex_.trips()));
   counter("reflex_trip_ratio", reflex_.last_trip_ratio());
+  // 0 none, 1 joint torque, 2 force, 3 moment, 4 joint velocity (safety_reflex.h, ReflexCause)
+  counter("reflex_cause", static_cast<double>(reflex_.last_cause()));
+  counter("reflex_peak_ratio", reflex_.peak_ratio());
   counter("reflex_latched", reflex_.latched() ? 1.0 : 0.0);
   counter("resets", static_cast<double>(resets_));
   if (tdpa_) {
@@ -352,7 +360,8 @@ void FollowerNode::trace_row(double* row) const {
   // which sender's command is in force (sessions counted from 1) and its number
   *row++ = static_cast<double>(command_sessions_);
   *row++ = static_cast<double>(command_seq_);
-  *row++ = reflex_.latched() ? 1.0 : 0.0;
+  // 0 while not latched, else what tripped it (the report's reflex_cause)
+  *row++ = reflex_.latched() ? static_cast<double>(reflex_.last_cause()) : 0.0;
   std::copy_n(arm_.q_rad.begin(), config_.joints, row);
 }
 

@@ -1,5 +1,6 @@
 // teleop: command-line entry point. `teleop launch scenario.yaml` runs a scenario, `teleop sweep`
-// one scenario under several network profiles, `teleop experiment` runs x profiles with metrics.
+// one scenario under several network profiles, `teleop experiment` runs x profiles with metrics,
+// `teleop reset NODE` clears a node's latched reflex.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include "teleop/experiment/experiment_runner.h"
 #include "teleop/experiment/results_table.h"
 #include "teleop/launcher/launcher.h"
+#include "teleop/launcher/reset_request.h"
 #include "teleop/launcher/sweep.h"
 
 int main(int argc, char** argv) {
@@ -66,12 +68,29 @@ int main(int argc, char** argv) {
       ->add_option("--domain", experiment_options.domain_id,
                    "DDS domain of the first run; each further run takes the next (default 60)")
       ->check(CLI::Range(0, 232));
+  ResetOptions reset_options;
+  CLI::App* reset_cmd = app.add_subcommand("reset", "ask a node to clear its latched reflex and follow its commands again");
+  reset_cmd->add_option("node", reset_options.target, "the node's name (e.g. follower)")->required();
+  reset_cmd->add_option("-c,--config", reset_options.config_path, "take domain, discovery and security from this node config")
+      ->check(CLI::ExistingFile);
+  reset_cmd->add_option("--domain", reset_options.domain_id, "DDS domain id (overrides the config)")->check(CLI::Range(0, 232));
+  reset_cmd->add_option("--timeout", reset_options.timeout_s, "seconds to wait for the node to acknowledge")
+      ->check(CLI::Range(0.1, 600.0));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   try {
+    if (reset_cmd->parsed()) {
+      if (send_reset(reset_options)) {
+        std::printf("reset sent to %s and acknowledged\n", reset_options.target.c_str());
+        return 0;
+      }
+      std::fprintf(stderr, "teleop reset: no reader of %s acknowledged within %.1f s (is the node running on this domain?)\n",
+                   teleop::transport::topics::kResetRequest.name, reset_options.timeout_s);
+      return 1;
+    }
     if (experiment_cmd->parsed()) {
       using namespace teleop::experiment;
       const ExperimentConfig config = load_experiment(experiment_path);

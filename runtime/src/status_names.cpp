@@ -22,6 +22,7 @@ const char* fault_name(uint32_t fault_code) {
     case msg::FAULT_LOOP_OVERRUN: return "loop_overrun";
     case msg::FAULT_HARDWARE: return "hardware";
     case msg::FAULT_CONTACT_REFLEX: return "contact_reflex";
+    case msg::FAULT_SPEED_REFLEX: return "speed_reflex";
   }
   return "unknown_fault";
 }

@@ -178,6 +178,11 @@ TEST_F(FollowerNodeTest, RejectsACommandStampedLongAgo) {
 }
 
 TEST_F(FollowerNodeTest, ClampsAndSaturatesAFarTargetWithoutExceedingAnyJointTorqueLimit) {
+  // the limits alone: the reflexes would stop this arm first (ReflexProcess), and the rejoin
+  // would approach the far target at its calm speed
+  config.reflex.enabled = false;
+  config.rejoin_speed_radps = 10.0;
+  start();
   auto& c = leader->command.sample();
   c.stiffness_nm_per_rad().assign(kJoints, 1e6);  // above max_stiffness: clamped
   for (int i = 0; i < 300; ++i) step(5.0);         // beyond the joint ranges: clamped

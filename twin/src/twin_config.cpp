@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "teleop/common/joint_config.h"
+#include "teleop/runtime/arm_configs.h"
 #include "teleop/teleoperation/architecture.h"
 
 namespace teleop::twin {
@@ -90,6 +91,39 @@ TwinConfig parse_twin_config(const ConfigNode& root) {
     throw s.error("mode", "teleoperation.architecture mmt needs mode: realtime and coupled_to: leader");
   }
   return c;
+}
+
+namespace {
+
+// an arm's own keys on top of the shared `twin:` section
+TwinConfig arm_config(const TwinConfig& shared, const std::string& name, const ConfigNode& a) {
+  TwinConfig c = shared;
+  c.arm = name;
+  c.joint_prefix = a.get_string("joint_prefix");
+  if (c.joint_prefix.empty()) throw a.error("joint_prefix", "must not be empty: it tells this arm's joints from the others'");
+  return c;
+}
+
+// what only the one-arm twin does
+void refuse_one_arm_features(const ConfigNode& section, const TwinConfig& shared) {
+  if (shared.mode != TwinMode::kRealtime) {
+    throw section.error("arms", "mode: lockstep and mode: hil run one arm only; a twin with arms runs mode: realtime");
+  }
+  if (shared.mmt.correction) {
+    throw section.child("mmt").error("correction", "model correction runs on one arm only, not with twin.arms");
+  }
+}
+
+}  // namespace
+
+std::vector<TwinConfig> parse_twin_arms(const ConfigNode& root) {
+  const ConfigNode section = root.child("twin");
+  const TwinConfig shared = parse_twin_config(root);
+  if (section.has("arms")) refuse_one_arm_features(section, shared);
+  if (!section.has("arms") && shared.object_correction) {
+    throw section.error("object_correction", "corrects the shared objects of a twin with arms (twin.arms) only");
+  }
+  return runtime::read_arm_configs(section, shared, arm_config);
 }
 
 }  // namespace teleop::twin

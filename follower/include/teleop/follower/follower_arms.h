@@ -12,10 +12,6 @@
 
 namespace teleop::follower {
 
-/// One config per arm: the `follower:` section with each arm's own keys applied, in the file's
-/// order; a single unnamed arm without `follower.arms`. Throws ConfigError naming file and key.
-std::vector<FollowerConfig> parse_follower_arms(const ConfigNode& root);
-
 /// The follower node's parser for run_node: one arm, or an ArmGroup of arms on a shared scene.
 runtime::LogicParser follower_logic_parser();
 

@@ -1,16 +1,16 @@
 #pragma once
-#include <optional>
-
-#include "teleop/teleoperation/architecture.h"
 // The `follower:` section of a follower node's configuration (config/nodes/follower.yaml).
 
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "teleop/common/config.h"
 #include "teleop/follower/arm_control.h"
 #include "teleop/follower/command_validator.h"
-#include "teleop/follower/contact_reflex.h"
+#include "teleop/follower/safety_reflex.h"
 #include "teleop/follower/mujoco_hardware.h"
+#include "teleop/teleoperation/architecture.h"
 
 namespace teleop::follower {
 
@@ -37,12 +37,15 @@ struct FollowerConfig {
   double max_torque_rate_nm_per_s = 1000.0;
   /// No valid command for this long: hold the current pose (watchdog).
   double command_timeout_s = 0.02;
+  /// Joint speed at which commands are joined after a hold (joint_rejoin.h): well below the
+  /// speed reflex, so that a leader that starts far away moves the arm there calmly.
+  double rejoin_speed_radps = 0.5;
   /// Joint impedance used to hold the pose in the safe state (gravity compensated).
   double hold_stiffness_nm_per_rad = 200.0;
   double hold_damping_nms_per_rad = 20.0;
   ArmControlConfig control;
-  /// The collision reflex on the external-load estimate (contact_reflex.h).
-  ContactReflexConfig contact_reflex;
+  /// The reflexes on the external-load estimate and the joint speeds (safety_reflex.h).
+  SafetyReflexConfig reflex;
   /// A two-arm follower on the box scene traces the box task's quantities (box_task_trace.h).
   bool trace_box_task = false;
   /// Objects of the shared scene whose measured pose goes to the twin (object_pose_feed.h).
@@ -53,5 +56,10 @@ struct FollowerConfig {
 
 /// Reads the `follower:` section; throws ConfigError naming file, key and problem.
 FollowerConfig parse_follower_config(const ConfigNode& root);
+
+/// One config per arm: the `follower:` section with each arm's own keys applied (each arm on its
+/// prefix of the shared scene), in the file's order; a single unnamed arm without
+/// `follower.arms`. Throws ConfigError naming file and key.
+std::vector<FollowerConfig> parse_follower_arms(const ConfigNode& root);
 
 }  // namespace teleop::follower

@@ -10,7 +10,7 @@
 
 #include "teleop/common/error_stats.h"
 #include "teleop/follower/arm_control.h"
-#include "teleop/follower/contact_reflex.h"
+#include "teleop/follower/safety_reflex.h"
 #include "teleop/follower/follower_config.h"
 #include "teleop/follower/joint_rejoin.h"
 #include "teleop/follower/passive_reference.h"
@@ -80,7 +80,7 @@ class FollowerNode final : public runtime::NodeLogic {
   std::optional<PassiveReference> passive_;
   ValidCommand corrected_{};
   const ValidCommand* controlled_ = &active_;
-  ContactReflex reflex_;
+  SafetyReflex reflex_;
   ValidCommand reflex_hold_{};
   JointRejoin rejoin_;
   JointVector held_q_rad_{};
@@ -107,7 +107,10 @@ class FollowerNode final : public runtime::NodeLogic {
   ErrorStats cartesian_tracking_;
   ErrorStats observer_vs_hardware_;
   ErrorStats direct_vs_hardware_;
+  // the estimated external load's peaks: force and moment at the flange, largest joint torque
   double peak_external_force_n_ = 0.0;
+  double peak_external_moment_nm_ = 0.0;
+  double peak_external_joint_torque_nm_ = 0.0;
   double torque_ratio_ = 0.0;  // this cycle: max over joints of |tau| / limit
 };
 

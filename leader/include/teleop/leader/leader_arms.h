@@ -7,14 +7,10 @@
 #include <vector>
 
 #include "teleop/common/config.h"
-#include "teleop/leader/leader_node.h"
+#include "teleop/leader/leader_config.h"
 #include "teleop/runtime/node_runner.h"
 
 namespace teleop::leader {
-
-/// One config per hand, in the file's order; a single unnamed hand without `leader.arms`.
-/// Throws ConfigError naming file and key.
-std::vector<LeaderConfig> parse_leader_arms(const ConfigNode& root);
 
 /// The leader node's parser for run_node: one hand, or an ArmGroup of hands.
 runtime::LogicParser leader_logic_parser();

@@ -17,6 +17,7 @@
 #include "teleop/leader/cartesian_mapping.h"
 #include "teleop/leader/clutch.h"
 #include "teleop/leader/feedback_renderer.h"
+#include "teleop/leader/leader_config.h"
 #include "teleop/leader/operator_motion.h"
 #include "teleop/leader/replay_device.h"
 #include "teleop/leader/simulated_haptic_arm.h"
@@ -28,56 +29,10 @@
 
 namespace teleop::leader {
 
-struct CartesianGains {
-  std::array<double, 3> translational_n_per_m{1500, 1500, 1500};
-  std::array<double, 3> rotational_nm_per_rad{100, 100, 100};
-  double damping_ratio = 0.7;
-  double nullspace_stiffness_nm_per_rad = 10.0;
-};
-
-struct LeaderConfig {
-  /// Which hand of a two-handed station this is ("" for a one-arm station): names its topics
-  /// (transport/arm_topic.h) and those of the follower's arm it commands.
-  std::string arm;
-  size_t joints = 7;
-  /// The follower's home pose [rad]: the command starts here whatever the device's pose.
-  JointVector home_rad{};
-  /// What the simulated operator intends (its home is home_rad).
-  OperatorMotionConfig motion;
-  /// Joint impedance commanded to the follower (position_position); the leader feels the same
-  /// spring and damper between its command and the follower's state.
-  double stiffness_nm_per_rad = 200.0;
-  double damping_nms_per_rad = 10.0;
-  /// Cartesian impedance commanded to the follower (pfc, pfc_tdpa).
-  CartesianGains cartesian;
-  /// Follower (or twin) silent longer than this: freeze the command and report the peer lost.
-  double peer_timeout_s = 0.1;
-  /// The device: `scripted` (exactly where the operator wants it), a simulated haptic arm
-  /// pulled there by the operator's hand, feeling the feedback, or the replay of a recorded
-  /// device motion (open loop: it renders nothing).
-  enum class Device { kScripted, kHapticArm, kReplay } device = Device::kScripted;
-  HapticArmConfig haptic_arm;
-  std::shared_ptr<const JointTrajectory> replay;
-  /// Model of the arm class (device and follower): Cartesian architectures and the traces.
-  std::string arm_model;
-  std::string ee_site = "ee_site";
-  /// false: nothing is rendered (the architecture's feedback is still computed and traced).
-  bool feedback_enabled = true;
-  FeedbackConfig feedback;
-  /// Scaling from the device to the follower's command (joint angles or positions).
-  double workspace_scale = 1.0;
-  teleoperation::TeleoperationConfig teleoperation;
-};
-
-/// The recorded operator motion whose CSV file is `section.key` (joints and column prefix from
-/// `motion`). Throws ConfigError naming the file, line and problem.
-std::shared_ptr<const JointTrajectory> load_recording(const ConfigNode& section, const std::string& key,
-                                                     const OperatorMotionConfig& motion);
-
 class LeaderNode final : public runtime::NodeLogic {
  public:
-  /// Reads the `leader:` and `teleoperation:` sections.
-  static LeaderConfig parse_config(const ConfigNode& root);
+  /// Reads the `leader:` and `teleoperation:` sections (leader_config.h).
+  static LeaderConfig parse_config(const ConfigNode& root) { return parse_leader_config(root); }
 
   LeaderNode(const LeaderConfig& config, runtime::NodeContext& context);
 

@@ -13,10 +13,6 @@
 
 namespace teleop::twin {
 
-/// One config per arm: the `twin:` section with each arm's own keys applied, in the file's
-/// order; a single unnamed arm without `twin.arms`. Throws ConfigError naming file and key.
-std::vector<TwinConfig> parse_twin_arms(const ConfigNode& root);
-
 /// The twin node's parser for run_node: one TwinNode, or an ArmGroup of TwinArms on a TwinScene.
 runtime::LogicParser twin_logic_parser();
 

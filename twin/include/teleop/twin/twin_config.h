@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "teleop/common/config.h"
 #include "teleop/common/joint_model.h"
@@ -81,5 +82,9 @@ struct TwinConfig {
 
 /// Reads the `twin:` section of `root`. Throws ConfigError naming file and key.
 TwinConfig parse_twin_config(const ConfigNode& root);
+
+/// One config per arm of `twin.arms` (each on its joint prefix of the shared scene), in the
+/// file's order; a single unnamed arm without it. Throws ConfigError naming file and key.
+std::vector<TwinConfig> parse_twin_arms(const ConfigNode& root);
 
 }  // namespace teleop::twin

@@ -1,0 +1,138 @@
+#include "teleop/leader/leader_config.h"
+
+#include <cmath>
+
+#include "teleop/common/joint_config.h"
+#include "teleop/runtime/arm_configs.h"
+#include "teleop/sim/model_config.h"
+
+namespace teleop::leader {
+namespace {
+
+using teleoperation::Architecture;
+
+CartesianGains parse_cartesian(const ConfigNode& s) {
+  CartesianGains g;
+  const auto c = s.optional_child("cartesian");
+  if (!c) return g;
+  g.translational_n_per_m = read_vector3(*c, "stiffness_n_per_m", Range{0, 1e5}, g.translational_n_per_m);
+  g.rotational_nm_per_rad = read_vector3(*c, "stiffness_nm_per_rad", Range{0, 1e4}, g.rotational_nm_per_rad);
+  g.damping_ratio = c->get_double("damping_ratio", Range{0, 10}, g.damping_ratio);
+  g.nullspace_stiffness_nm_per_rad = c->get_double("nullspace_stiffness_nm_per_rad", Range{0, 1e3}, g.nullspace_stiffness_nm_per_rad);
+  return g;
+}
+
+}  // namespace
+
+std::shared_ptr<const JointTrajectory> load_recording(const ConfigNode& section, const std::string& key,
+                                                     const OperatorMotionConfig& motion) {
+  return std::make_shared<const JointTrajectory>(
+      JointTrajectory::load_csv(section.get_path(key), motion.joints, motion.recording_columns));
+}
+
+namespace {
+
+OperatorMotionConfig parse_motion(const ConfigNode& s, size_t joints, const JointVector& home) {
+  OperatorMotionConfig m;
+  m.joints = joints;
+  m.home_rad = home;
+  const std::string kind = s.get_choice("motion", {"sine", "push_hold", "recorded"}, "sine");
+  m.kind = kind == "push_hold" ? OperatorMotionConfig::Kind::kPushHold
+           : kind == "recorded" ? OperatorMotionConfig::Kind::kRecorded
+                                : OperatorMotionConfig::Kind::kSine;
+  if (m.kind == OperatorMotionConfig::Kind::kRecorded) {
+    // a CSV with t_s and <columns>0..: e.g. an earlier leader trace (columns q_dev_); each arm of
+    // a two-handed station may give its own file (leader_arms.cpp)
+    const auto recording = s.child("recording");
+    m.recording_columns = recording.get_string("columns", m.recording_columns);
+    if (!s.has("arms") || recording.has("file")) m.recording = load_recording(recording, "file", m);
+  }
+  const double amplitude = s.get_double("amplitude_rad", Range{0, M_PI}, 0.3);
+  m.amplitude_rad = read_joint_list(s, "amplitudes_rad", joints, Range{-M_PI, M_PI}, amplitude);
+  m.frequency_hz = s.get_double("frequency_hz", Range{0, 50}, m.frequency_hz);
+  m.ramp_s = s.get_double("ramp_s", Range{0, 60}, m.ramp_s);
+  return m;
+}
+
+void parse_feedback(const ConfigNode& s, LeaderConfig& c) {
+  const ConfigNode f = s.child("feedback");
+  c.feedback_enabled = f.get_bool("enabled", true);
+  c.feedback.gain = f.get_double("gain", Range{0, 100}, c.feedback.gain);
+  c.feedback.cutoff_hz = f.get_double("cutoff_hz", Range{0, 500}, c.feedback.cutoff_hz);
+  c.feedback.max_torque_nm = read_joint_list(f, "max_torque_nm", c.joints, Range{0, 1e3}, 20.0);
+  c.feedback.max_rate_nm_per_s = f.get_bound_or_off("max_rate_nm_per_s", Range{1, 1e6}, c.feedback.max_rate_nm_per_s);
+  c.feedback.fade_s = f.get_double("fade_ms", Range{0, 10'000}, c.feedback.fade_s * 1e3) * 1e-3;
+}
+
+}  // namespace
+
+LeaderConfig parse_leader_config(const ConfigNode& root) {
+  const ConfigNode s = root.child("leader");
+  LeaderConfig c;
+  c.joints = read_joint_count(s);
+  c.home_rad = read_joint_list(s, "home_rad", c.joints, kJointAngleRange, 0.0);
+  c.motion = parse_motion(s, c.joints, c.home_rad);
+  c.stiffness_nm_per_rad = s.get_double("stiffness_nm_per_rad", Range{0, 1e5}, c.stiffness_nm_per_rad);
+  c.damping_nms_per_rad = s.get_double("damping_nms_per_rad", Range{0, 1e4}, c.damping_nms_per_rad);
+  c.cartesian = parse_cartesian(s);
+  c.peer_timeout_s = s.get_double("peer_timeout_ms", Range{1, 60'000}, 100) * 1e-3;
+  const std::string device = s.get_choice("device", {"scripted", "haptic_arm", "replay"}, "scripted");
+  c.device = device == "haptic_arm" ? LeaderConfig::Device::kHapticArm
+             : device == "replay"   ? LeaderConfig::Device::kReplay
+                                    : LeaderConfig::Device::kScripted;
+  if (c.device == LeaderConfig::Device::kReplay) {
+    const ConfigNode replay = s.child("replay");
+    c.replay = std::make_shared<const JointTrajectory>(
+        JointTrajectory::load_csv(replay.get_path("file"), c.joints, replay.get_string("columns", "q_dev_")));
+  }
+  // a two-handed station names each hand's model in leader.arms (leader_arms.cpp)
+  const bool per_arm_models = s.has("arms");
+  if (auto arm = s.optional_child("haptic_arm")) {
+    if (!per_arm_models) c.haptic_arm.model.model_path = sim::get_model_path(*arm, "model");
+    c.haptic_arm.model.keyframe = arm->get_string("keyframe", "");
+    c.haptic_arm.hand_stiffness_nm_per_rad = arm->get_double("hand_stiffness_nm_per_rad", Range{0, 1e4}, c.haptic_arm.hand_stiffness_nm_per_rad);
+    c.haptic_arm.hand_damping_nms_per_rad = arm->get_double("hand_damping_nms_per_rad", Range{0, 1e3}, c.haptic_arm.hand_damping_nms_per_rad);
+  } else if (c.device == LeaderConfig::Device::kHapticArm) {
+    throw s.error("haptic_arm", "device: haptic_arm needs a haptic_arm section with the model file");
+  }
+  if (s.has("arm_model")) c.arm_model = sim::get_model_path(s, "arm_model");
+  c.ee_site = s.get_string("ee_site", c.ee_site);
+  c.workspace_scale = s.get_double("workspace_scale", Range{0.01, 100}, c.workspace_scale);
+  parse_feedback(s, c);
+  const auto teleoperation = teleoperation::parse_teleoperation_config(root);
+  if (!teleoperation) throw root.error("teleoperation", "the leader needs a teleoperation section (architecture)");
+  c.teleoperation = *teleoperation;
+  if (teleoperation::is_cartesian(c.teleoperation.architecture) && c.arm_model.empty() && !per_arm_models) {
+    throw s.error("arm_model", std::string("architecture ") + to_string(c.teleoperation.architecture) +
+                                   " maps the device in Cartesian space: give the arm's model file");
+  }
+  return c;
+}
+
+namespace {
+
+// a hand's own keys on top of the shared `leader:` section
+LeaderConfig arm_config(const LeaderConfig& shared, const std::string& name, const ConfigNode& a) {
+  LeaderConfig c = shared;
+  c.arm = name;
+  // the hand's device is mounted like the robot's arm: one model for the device and the mapping
+  c.arm_model = sim::get_model_path(a, "model");
+  c.haptic_arm.model.model_path = c.arm_model;
+  c.ee_site = a.get_string("ee_site");
+  c.home_rad = read_joint_list(a, "home_rad", c.joints, kJointAngleRange, 0.0);
+  c.motion.home_rad = c.home_rad;
+  if (c.motion.kind == OperatorMotionConfig::Kind::kRecorded) {
+    c.motion.recording = load_recording(a, "recording", c.motion);
+  } else if (a.has("recording")) {
+    throw a.error("recording", "only for leader.motion: recorded");
+  }
+  return c;
+}
+
+}  // namespace
+
+std::vector<LeaderConfig> parse_leader_arms(const ConfigNode& root) {
+  return runtime::read_arm_configs(root.child("leader"), parse_leader_config(root), arm_config);
+}
+
+}  // namespace teleop::leader
