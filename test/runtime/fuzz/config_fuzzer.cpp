@@ -35,9 +35,16 @@ void write(const fs::path& path, const std::string& text) {
   std::ofstream(path) << text;
 }
 
-// the scratch folder: <dir>/nodes/fuzz.yaml is where each input "is", models and recordings beside it
+fs::path scratch_dir() { return fs::temp_directory_path() / ("teleop_config_fuzz_" + std::to_string(getpid())); }
+
+// the scratch folder: <dir>/nodes/fuzz.yaml is where each input "is", models and recordings beside
+// it; removed when the fuzzer exits
 std::string make_scratch() {
-  const fs::path dir = fs::temp_directory_path() / ("teleop_config_fuzz_" + std::to_string(getpid()));
+  const fs::path dir = scratch_dir();
+  std::atexit([] {
+    std::error_code ignored;
+    fs::remove_all(scratch_dir(), ignored);
+  });
   for (const char* model : {"panda", "scene_wall", "scene_box_shelf", "left_arm", "right_arm"}) {
     write(dir / "models" / (std::string(model) + ".xml"), "<mujoco model=\"stand_in\"/>\n");
   }
