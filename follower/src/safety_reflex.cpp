@@ -44,6 +44,7 @@ bool SafetyReflex::check(const control::JointVector& tau_ext_nm, const control::
   if (!config_.enabled) return false;
   double ratio = 0.0;
   const ReflexCause cause = largest(tau_ext_nm, wrench, dq_radps, ratio);
+  ratio_ = ratio;
   peak_ratio_ = std::max(peak_ratio_, ratio);
   if (latched_ || ratio <= 1.0) return false;
   latched_ = true;

@@ -78,34 +78,9 @@ std::vector<RunningNode> start_nodes(const Scenario& scenario, const LaunchOptio
   std::vector<RunningNode> nodes;
   for (const auto& spec : scenario.nodes) {
     const std::string report = (fs::path(report_dir) / (spec.name + ".yaml")).string();
-    std::vector<std::string> argv{find_executable(spec.executable, options.bin_dir), "--config", spec.config,
-                                  "--report", report};
-    if (options.domain_id) {
-      argv.push_back("--domain");
-      argv.push_back(std::to_string(*options.domain_id));
-    }
-    for (const std::string& peer : impaired_peers(scenario, spec)) {
-      if (options.network.empty()) break;
-      argv.push_back("--impair");
-      argv.push_back(peer + "=" + options.network);
-    }
-    if (options.seed) {
-      argv.push_back("--seed");
-      argv.push_back(std::to_string(*options.seed));
-    }
-    for (const std::string& set : node_overrides(scenario, spec, options.sets)) {
-      argv.push_back("--set");
-      argv.push_back(set);
-    }
-    if (!options.trace_dir.empty()) {
-      argv.push_back("--trace");
-      argv.push_back((fs::path(options.trace_dir) / (spec.name + ".csv")).string());
-      if (options.trace_seconds) {
-        argv.push_back("--trace-seconds");
-        argv.push_back(std::to_string(*options.trace_seconds));
-      }
-    }
-    argv.insert(argv.end(), spec.args.begin(), spec.args.end());
+    const std::string trace =
+        options.trace_dir.empty() ? "" : (fs::path(options.trace_dir) / (spec.name + ".csv")).string();
+    const std::vector<std::string> argv = node_argv(scenario, spec, options, report, trace);
     std::printf("[launch  ] starting %s: %s --config %s\n", spec.name.c_str(), argv[0].c_str(), spec.config.c_str());
     nodes.push_back({&spec, ChildProcess::spawn(argv), report});
   }
@@ -155,6 +130,39 @@ bool stop_nodes(std::vector<RunningNode>& nodes, StatusMonitor& monitor, double 
 }
 
 }  // namespace
+
+std::vector<std::string> node_argv(const Scenario& scenario, const NodeLaunch& spec, const LaunchOptions& options,
+                                   const std::string& report_path, const std::string& trace_path) {
+  std::vector<std::string> argv{find_executable(spec.executable, options.bin_dir), "--config", spec.config, "--report",
+                                report_path};
+  if (options.domain_id) {
+    argv.push_back("--domain");
+    argv.push_back(std::to_string(*options.domain_id));
+  }
+  for (const std::string& peer : impaired_peers(scenario, spec)) {
+    if (options.network.empty()) break;
+    argv.push_back("--impair");
+    argv.push_back(peer + "=" + options.network);
+  }
+  if (options.seed) {
+    argv.push_back("--seed");
+    argv.push_back(std::to_string(*options.seed));
+  }
+  for (const std::string& set : node_overrides(scenario, spec, options.sets)) {
+    argv.push_back("--set");
+    argv.push_back(set);
+  }
+  if (!trace_path.empty()) {
+    argv.push_back("--trace");
+    argv.push_back(trace_path);
+    if (options.trace_seconds) {
+      argv.push_back("--trace-seconds");
+      argv.push_back(std::to_string(*options.trace_seconds));
+    }
+  }
+  argv.insert(argv.end(), spec.args.begin(), spec.args.end());
+  return argv;
+}
 
 std::vector<std::string> node_overrides(const Scenario& scenario, const NodeLaunch& node,
                                         const std::vector<std::string>& sets) {

@@ -3,11 +3,14 @@
 // `teleop reset NODE` clears a node's latched reflex.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "teleop/common/config.h"
 #include "teleop/experiment/experiment_runner.h"
 #include "teleop/experiment/results_table.h"
+#include "teleop/experiment/soak.h"
 #include "teleop/launcher/launcher.h"
 #include "teleop/launcher/reset_request.h"
 #include "teleop/launcher/sweep.h"
@@ -68,6 +71,17 @@ int main(int argc, char** argv) {
       ->add_option("--domain", experiment_options.domain_id,
                    "DDS domain of the first run; each further run takes the next (default 60)")
       ->check(CLI::Range(0, 232));
+  std::string soak_path;
+  teleop::experiment::SoakOptions soak_options;
+  CLI::App* soak_cmd = app.add_subcommand(
+      "soak", "kill and restart a scenario's nodes at random under a hostile network, measure each recovery");
+  soak_cmd->add_option("soak", soak_path, "soak YAML file")->required()->check(CLI::ExistingFile);
+  soak_cmd->add_option("--kills-per-node", soak_options.kills_per_node, "kills of each node (overrides the file)")
+      ->check(CLI::Range(1, 10'000));
+  soak_cmd->add_option("--seed", soak_options.seed, "seed of the kill schedule and the network (overrides the file)");
+  soak_cmd->add_option("--domain", soak_options.domain_id, "DDS domain id for every node")->check(CLI::Range(0, 232));
+  soak_cmd->add_option("--report-dir", soak_options.report_dir, "traces, reports and logs (default: a new folder in /tmp)");
+  soak_cmd->add_option("--bin-dir", soak_options.bin_dir, "directory of the node executables");
   ResetOptions reset_options;
   CLI::App* reset_cmd = app.add_subcommand("reset", "ask a node to clear its latched reflex and follow its commands again");
   reset_cmd->add_option("node", reset_options.target, "the node's name (e.g. follower)")->required();
@@ -90,6 +104,18 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "teleop reset: no reader of %s acknowledged within %.1f s (is the node running on this domain?)\n",
                    teleop::transport::topics::kResetRequest.name, reset_options.timeout_s);
       return 1;
+    }
+    if (soak_cmd->parsed()) {
+      using namespace teleop::experiment;
+      const SoakResult result = run_soak(load_soak(soak_path), soak_options);
+      std::printf("%s", format_soak(result, soak_path).c_str());
+      std::printf("\nevents: %s\ntraces, reports and logs: %s\n", result.csv_path.c_str(), result.report_dir.c_str());
+      const bool unrecovered = std::any_of(result.events.begin(), result.events.end(),
+                                           [](const SoakEvent& e) { return e.unrecovered(); });
+      const bool failed = result.failures > 0 || unrecovered || result.stale_commands > 0 ||
+                          result.torque_violations > 0 || result.reflex_violations > 0;
+      if (failed) std::printf("RESULT: FAILED (a process failed, an event did not recover, or a violation)\n");
+      return failed ? 1 : 0;
     }
     if (experiment_cmd->parsed()) {
       using namespace teleop::experiment;

@@ -14,6 +14,7 @@
 #include "teleop/runtime/status_names.h"
 #include "teleop/runtime/status_publisher.h"
 #include "teleop/runtime/trace_recorder.h"
+#include "teleop/runtime/trace_stream.h"
 #include "teleop/transport/participant_config.h"
 
 namespace teleop::runtime {
@@ -30,6 +31,7 @@ struct CommandLine {
   std::vector<std::string> sets;
   std::string trace_path;
   std::optional<double> trace_seconds;
+  bool trace_stream = false;
 };
 
 // "--impair PEER=PROFILE": impair the link to PEER ("*": every peer) with PROFILE
@@ -156,12 +158,14 @@ int run(const CommandLine& cli, const NodeDescription& description) {
 
   NodeReport report;
   std::unique_ptr<TraceRecorder> trace;
+  std::unique_ptr<TraceStream> stream;
   int64_t started_ns = monotonic_now_ns();
   {
     transport::Participant participant(setup.transport);
     NodeContext context{node, participant};
     std::unique_ptr<NodeLogic> logic = setup.build(context);
     trace = make_trace_recorder(cli, node, *logic);
+    if (trace && cli.trace_stream) stream = std::make_unique<TraceStream>(*trace, cli.trace_path);
     StatusPublisher status(participant, node.name, description.role, node.rate_hz, node.status_rate_hz);
     MonotonicClock clock;
     RatePacer pacer(clock, node.period_ns(), node.max_catch_up_cycles);
@@ -172,6 +176,7 @@ int run(const CommandLine& cli, const NodeDescription& description) {
     }
     started_ns = monotonic_now_ns();
     run_loop(node, *logic, status, pacer, trace.get());
+    if (trace) trace->finish();
     // bounded, so that shutdown stays well inside 100 ms even with a dead status reader
     status.publish_stopping(*logic, pacer.stats(), 50 * kNsPerMs);
 
@@ -193,7 +198,11 @@ int run(const CommandLine& cli, const NodeDescription& description) {
   if (!cli.report_path.empty()) write_report(report, cli.report_path);
   // after the loop and the shutdown measurement: writing is slow and never on the control path;
   // after the report, so that a trace that cannot be written does not cost the report too
-  if (trace) {
+  if (stream) {
+    stream->stop();
+    spdlog::info("{}: streamed {} trace rows ({} lost) to {}", node.name, stream->rows_written(), stream->rows_lost(),
+                 cli.trace_path);
+  } else if (trace) {
     trace->write_csv(cli.trace_path);
     spdlog::info("{}: wrote {} trace rows ({} dropped) to {}", node.name, trace->rows(), trace->rows_dropped(),
                  cli.trace_path);
@@ -221,6 +230,8 @@ int run_node(int argc, char** argv, const NodeDescription& description) {
                  "--set leader.amplitudes_rad=[0,0.2,0,0.2,0,0,0]; repeatable, applied in order");
   app.add_option("--trace", cli.trace_path,
                  "write the node's time trace (CSV, t_s = CLOCK_MONOTONIC) to this file at exit");
+  app.add_flag("--trace-stream", cli.trace_stream,
+               "write the trace while running (a SIGKILL or crash loses at most its last 50 ms), not at exit");
   app.add_option("--trace-seconds", cli.trace_seconds,
                  "keep the most recent S seconds of trace (default: the run's duration, else 60)")
       ->check(finite_in(1e-3, 1e6));

@@ -76,6 +76,7 @@ TwinConfig parse_twin_config(const ConfigNode& root) {
   c.feedback_gain = s.get_double("feedback_gain", Range{0, 10}, c.feedback_gain);
   c.feedback_cutoff_hz = s.get_double("feedback_cutoff_hz", Range{0, 1e4}, c.feedback_cutoff_hz);
   c.peer_timeout_s = s.get_double("peer_timeout_ms", Range{1, 60'000}, 100) * 1e-3;
+  c.rejoin_speed_radps = s.get_double("rejoin_speed_radps", Range{0.01, 10}, c.rejoin_speed_radps);
   if (auto lockstep = s.optional_child("lockstep")) c.lockstep = read_lockstep(*lockstep);
   if (auto hil = s.optional_child("hil")) c.hil = read_hil(*hil);
   if (c.mode == TwinMode::kHil && !s.has("hil")) throw s.error("hil", "mode: hil needs a hil section with the goal");

@@ -52,7 +52,8 @@ TwinNode::TwinNode(const TwinConfig& config, runtime::NodeContext& context)
   } else if (config.mode == TwinMode::kHil) {
     measured_.emplace(context.participant, coupled_topic(config));
   } else {
-    coupled_.emplace(context.participant, coupled_topic(config), joints_, config.peer_timeout_s, sim_.q_rad());
+    coupled_.emplace(context.participant, coupled_topic(config), joints_, config.peer_timeout_s, sim_.q_rad(),
+                     config.rejoin_speed_radps, 1.0 / context.node.rate_hz);
   }
   if (config.mode == TwinMode::kHil) {
     if (config.hil.goal_joints != joints_) {

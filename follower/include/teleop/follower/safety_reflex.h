@@ -55,7 +55,9 @@ class SafetyReflex {
   uint32_t fault_code() const;
   /// The quantity that crossed its threshold at the last trip, as a multiple of that threshold.
   double last_trip_ratio() const { return trip_ratio_; }
-  /// The largest quantity seen so far as a multiple of its threshold (how close a run came).
+  /// The largest quantity of the last check as a multiple of its threshold, and the largest seen
+  /// so far (how close a run came).
+  double ratio() const { return ratio_; }
   double peak_ratio() const { return peak_ratio_; }
   const SafetyReflexConfig& config() const { return config_; }
 
@@ -69,6 +71,7 @@ class SafetyReflex {
   uint64_t trips_ = 0;
   ReflexCause cause_ = ReflexCause::kNone;
   double trip_ratio_ = 0.0;
+  double ratio_ = 0.0;
   double peak_ratio_ = 0.0;
 };
 

@@ -45,6 +45,12 @@ struct LaunchResult {
 std::vector<std::string> node_overrides(const Scenario& scenario, const NodeLaunch& node,
                                         const std::vector<std::string>& sets);
 
+/// The command line that starts `node` of `scenario` with `options` (domain, impairment of the
+/// links to other sites, seed, overrides), writing its report to `report_path` and, unless empty,
+/// its trace to `trace_path`.
+std::vector<std::string> node_argv(const Scenario& scenario, const NodeLaunch& node, const LaunchOptions& options,
+                                   const std::string& report_path, const std::string& trace_path);
+
 /// Runs the scenario to the end (its duration, SIGINT/SIGTERM, or a node failing).
 LaunchResult launch(const Scenario& scenario, const LaunchOptions& options);
 

@@ -1,39 +1,59 @@
 #pragma once
 // The time trace of a node: one row of named values per control cycle, kept in preallocated
-// memory during the run and written as CSV after it.
+// memory during the run and written as CSV after it, or streamed to the file while the node runs
+// (trace_stream.h).
 
+#include <atomic>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <vector>
 
 namespace teleop::runtime {
 
 /// Keeps the most recent `capacity_rows` rows (a ring: older rows are overwritten and counted as
-/// dropped). Construction and write_csv() allocate; begin_row() does not (real-time safe).
+/// dropped). Construction and write_csv() allocate; begin_row() does not (real-time safe). One
+/// thread records; another may read completed rows while it does (copy_row()).
 class TraceRecorder {
  public:
   /// `columns`: the value names (without the time column); `capacity_rows` >= 1.
   TraceRecorder(std::vector<std::string> columns, uint64_t capacity_rows);
 
   /// Starts the row of the cycle released at `now_ns` (CLOCK_MONOTONIC) and returns its
-  /// `columns().size()` values, all NaN until the caller fills them. Real-time safe.
+  /// `columns().size()` values, all NaN until the caller fills them; the row before is complete
+  /// from now on. Real-time safe.
   double* begin_row(int64_t now_ns);
+  /// Marks the last row complete (the recording has ended).
+  void finish();
 
   const std::vector<std::string>& columns() const { return columns_; }
   uint64_t capacity_rows() const { return capacity_rows_; }
   /// Rows held now (at most the capacity).
-  uint64_t rows() const { return rows_recorded_ < capacity_rows_ ? rows_recorded_ : capacity_rows_; }
+  uint64_t rows() const;
   /// Rows overwritten because the ring was full.
-  uint64_t rows_dropped() const { return rows_recorded_ - rows(); }
+  uint64_t rows_dropped() const { return recorded() - rows(); }
+  /// Rows recorded since the start and filled completely (their index is below this).
+  uint64_t rows_complete() const { return complete_.load(std::memory_order_acquire); }
+  /// Copies the complete row `index` (counted from the start) into `t_ns` and `values`
+  /// (columns().size() of them). False when the ring has overwritten it already. Any thread.
+  bool copy_row(uint64_t index, int64_t& t_ns, double* values) const;
 
   /// Writes the held rows, oldest first: header `t_s,<columns>`, then `t_s` in seconds with 9
   /// decimals and the values as `%.9g`. Throws std::runtime_error when the file cannot be written.
   void write_csv(const std::string& path) const;
+  /// The CSV's header line and one row, in that format.
+  static void write_header(FILE* f, const std::vector<std::string>& columns);
+  static void write_row(FILE* f, int64_t t_ns, const double* values, size_t count);
 
  private:
+  uint64_t recorded() const { return recorded_.load(std::memory_order_relaxed); }
+  /// The ring holds rows [recorded - capacity, recorded).
+  bool held(uint64_t index) const { return index + capacity_rows_ >= recorded_.load(std::memory_order_relaxed); }
+
   std::vector<std::string> columns_;
   uint64_t capacity_rows_;
-  uint64_t rows_recorded_ = 0;
+  std::atomic<uint64_t> recorded_{0};
+  std::atomic<uint64_t> complete_{0};
   std::vector<int64_t> times_ns_;
   std::vector<double> values_;  ///< row-major, capacity_rows_ x columns_.size()
 };

@@ -73,6 +73,8 @@ struct TwinConfig {
   double feedback_cutoff_hz = 30.0;
   /// Coupled robot silent longer than this: stop rendering feedback.
   double peer_timeout_s = 0.1;
+  /// Joint speed at which the twin joins its coupled robot again after a hold (coupled_robot.h).
+  double rejoin_speed_radps = 0.5;
   LockstepConfig lockstep;
   HilConfig hil;
   MmtConfig mmt;

@@ -1,0 +1,55 @@
+#include "teleop/runtime/trace_stream.h"
+
+#include <chrono>
+#include <stdexcept>
+
+namespace teleop::runtime {
+
+TraceStream::TraceStream(const TraceRecorder& recorder, const std::string& path, int64_t period_ns)
+    : recorder_(recorder), path_(path), file_(std::fopen(path.c_str(), "w"), &std::fclose), row_(recorder.columns().size()) {
+  if (!file_) throw std::runtime_error("cannot write the trace " + path);
+  TraceRecorder::write_header(file_.get(), recorder_.columns());
+  thread_ = std::thread([this, period_ns] { run(period_ns); });
+}
+
+TraceStream::~TraceStream() {
+  try {
+    stop();
+  } catch (const std::exception&) {
+    // a destructor reports nothing; stop() called before it does
+  }
+}
+
+void TraceStream::run(int64_t period_ns) {
+  while (!stop_.load()) {
+    if (!drain()) failed_ = true;
+    std::this_thread::sleep_for(std::chrono::nanoseconds(period_ns));
+  }
+}
+
+bool TraceStream::drain() {
+  FILE* f = file_.get();
+  const uint64_t complete = recorder_.rows_complete();
+  for (; next_ < complete; ++next_) {
+    int64_t t_ns = 0;
+    if (!recorder_.copy_row(next_, t_ns, row_.data())) {
+      ++lost_;
+      continue;
+    }
+    TraceRecorder::write_row(f, t_ns, row_.data(), row_.size());
+    ++written_;
+  }
+  // to the kernel now: what is there survives the process
+  return std::fflush(f) == 0 && !std::ferror(f);
+}
+
+void TraceStream::stop() {
+  if (!thread_.joinable()) return;
+  stop_ = true;
+  thread_.join();
+  const bool ok = drain() && !failed_.load();
+  file_.reset();
+  if (!ok) throw std::runtime_error("error writing the trace " + path_);
+}
+
+}  // namespace teleop::runtime
