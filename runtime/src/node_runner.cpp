@@ -6,7 +6,9 @@
 #include <sys/prctl.h>
 
 #include <cmath>
+#include <iomanip>
 #include <optional>
+#include <sstream>
 
 #include "teleop/common/clock.h"
 #include "teleop/runtime/realtime.h"
@@ -50,18 +52,24 @@ void apply_impair_overrides(const CommandLine& cli, transport::ParticipantConfig
   if (cli.seed) transport.impairment.seed = *cli.seed;
 }
 
+std::string format_number(double v) {
+  std::ostringstream out;
+  out << std::setprecision(15) << v;
+  return out.str();
+}
+
 // what a numeric flag may be: a finite number in [min, max] (NaN and infinity never configure anything)
 CLI::Validator finite_in(double min, double max) {
+  const std::string range = "[" + format_number(min) + ", " + format_number(max) + "]";
   return CLI::Validator(
-      [min, max](const std::string& text) -> std::string {
+      [min, max, range](const std::string& text) -> std::string {
         double v = 0.0;
         if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v) || v < min || v > max) {
-          return "must be a finite number in [" + CLI::detail::to_string(min) + ", " + CLI::detail::to_string(max) +
-                 "], got " + text;
+          return "must be a finite number in " + range + ", got " + text;
         }
         return {};
       },
-      "NUMBER in [" + CLI::detail::to_string(min) + ", " + CLI::detail::to_string(max) + "]");
+      "NUMBER in " + range);
 }
 
 // the trace is preallocated for its whole window: a bound on its rows keeps a long run's
@@ -72,9 +80,9 @@ uint64_t trace_rows(const CommandLine& cli, const NodeConfig& node) {
   const double seconds = cli.trace_seconds.value_or(node.duration_s > 0 ? node.duration_s : 60.0);
   const double rows = std::ceil(seconds * node.rate_hz) + 1;
   if (rows > static_cast<double>(kMaxTraceRows)) {
-    throw ConfigError("--trace-seconds: a trace of " + std::to_string(seconds) + " s at " + std::to_string(node.rate_hz) +
-                      " Hz needs " + std::to_string(static_cast<uint64_t>(rows)) + " rows; it keeps at most " +
-                      std::to_string(kMaxTraceRows) + ": give a shorter --trace-seconds");
+    throw ConfigError("--trace-seconds: a trace of " + format_number(seconds) + " s at " + format_number(node.rate_hz) +
+                      " Hz needs " + format_number(rows) + " rows; it keeps at most " + format_number(kMaxTraceRows) +
+                      ": give a shorter --trace-seconds (with --trace-stream the file gets every row anyway)");
   }
   return static_cast<uint64_t>(rows);
 }

@@ -30,6 +30,7 @@ void TraceStream::run(int64_t period_ns) {
 bool TraceStream::drain() {
   FILE* f = file_.get();
   const uint64_t complete = recorder_.rows_complete();
+  uint64_t written = 0;
   for (; next_ < complete; ++next_) {
     int64_t t_ns = 0;
     if (!recorder_.copy_row(next_, t_ns, row_.data())) {
@@ -37,10 +38,12 @@ bool TraceStream::drain() {
       continue;
     }
     TraceRecorder::write_row(f, t_ns, row_.data(), row_.size());
-    ++written_;
+    ++written;
   }
-  // to the kernel now: what is there survives the process
-  return std::fflush(f) == 0 && !std::ferror(f);
+  // to the kernel now: what is there survives the process; counted once it is there
+  const bool ok = std::fflush(f) == 0 && !std::ferror(f);
+  written_ += written;
+  return ok;
 }
 
 void TraceStream::stop() {

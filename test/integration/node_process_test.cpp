@@ -25,6 +25,9 @@ const BadConfigCase kBadConfigs[] = {
     {"out_of_range", "  rate_hz: 1000\n", "  rate_hz: 0\n", "node.rate_hz: value 0 is out of range [1, 10000]"},
     {"not_a_mapping", "transport:\n", "transport: udp\nunused:\n", "transport: expected a mapping, got 'udp'"},
     {"bad_peer", "  initial_peers: []", "  initial_peers: [\"10.0.0.300\"]", "transport.initial_peers: '10.0.0.300'"},
+    // a second value would win nothing and never be range-checked (issue 16)
+    {"duplicate_key", "  rate_hz: 1000\n", "  rate_hz: 1000\n  rate_hz: 5\n", "node.rate_hz: duplicate key (first given on line"},
+    {"key_not_a_name", "  rate_hz: 1000\n", "  rate_hz: 1000\n  [a, b]: 1\n", "node: a key must be a plain name, got a list"},
 };
 
 class NodeProcess : public ::testing::TestWithParam<const char*> {
@@ -67,6 +70,37 @@ TEST_P(NodeProcess, RejectsAMissingConfigFile) {
   EXPECT_NE(r.output.find("/nonexistent/x.yaml: cannot open the file"), std::string::npos) << r.output;
 }
 
+TEST_P(NodeProcess, RejectsAFolderAsConfigNamingIt) {
+  const std::string dir = make_temp_dir();
+  const ProcessResult r = run_process({executable(), "--config", dir}, std::chrono::seconds(20));
+  EXPECT_EQ(r.exit_status, 2) << r.output;
+  EXPECT_NE(r.output.find(dir + ": is a folder, not a configuration file"), std::string::npos) << r.output;
+}
+
+// numbers that configure nothing a run can be: each is refused before the node starts (issue 16:
+// --duration nan ran forever, 1e300 ended after one cycle with rc 0, --trace-seconds 1e300 kept
+// one row, --duration 1e6 with --trace died of bad_alloc after joining the network)
+TEST_P(NodeProcess, RejectsNumericFlagsThatConfigureNothing) {
+  const std::string trace = make_temp_dir() + "/t.csv";
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--duration", "nan"}, "--duration: must be a finite number in [0, 1000000], got nan"},
+      {{"--duration", "inf"}, "--duration: must be a finite number"},
+      {{"--duration", "1e300"}, "--duration: must be a finite number"},
+      {{"--duration", "-1"}, "--duration: must be a finite number"},
+      {{"--trace", trace, "--trace-seconds", "1e300"}, "--trace-seconds: must be a finite number"},
+      {{"--duration", "1e6", "--trace", trace}, "--trace-seconds: a trace of"},
+  };
+  for (const auto& [flags, expected] : cases) {
+    std::vector<std::string> argv{executable(), "--config", shipped_config()};
+    argv.insert(argv.end(), flags.begin(), flags.end());
+    const ProcessResult r = run_process(argv, std::chrono::seconds(20));
+    SCOPED_TRACE(flags.front() + " " + flags[1]);
+    EXPECT_EQ(r.exit_status, 2) << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("starting"), std::string::npos) << "must fail before joining the network";
+  }
+}
+
 TEST_P(NodeProcess, RejectsUnknownFlags) {
   const ProcessResult r =
       run_process({executable(), "--config", shipped_config(), "--frobnicate"}, std::chrono::seconds(20));
@@ -98,6 +132,28 @@ TEST_P(NodeProcess, ShutsDownCleanlyOnSigtermAndSigint) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Nodes, NodeProcess, ::testing::Values("leader", "follower", "twin"));
+
+// the follower's own: a model MuJoCo cannot load is found while reading the config, before the
+// participant joins; a 0 that would switch a safety check off is refused
+TEST(FollowerConfigProcess, RefusesAModelThatDoesNotLoadAndAZeroThatSwitchesACheckOff) {
+  const std::string dir = make_temp_dir();
+  write_file(dir + "/broken.xml", "<mujoco><worldbody><body></mujoco>\n");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"follower.mujoco.model=" + dir + "/broken.xml", "follower.mujoco.model: the model does not load: "},
+      {"follower.max_command_age_ms=0", "follower.max_command_age_ms: 0 would switch the check off: write off"},
+      {"follower.max_torque_rate_nm_per_s=0", "follower.max_torque_rate_nm_per_s: 0 would switch the check off"},
+  };
+  for (const auto& [set, expected] : cases) {
+    SCOPED_TRACE(set);
+    const ProcessResult r = run_process(
+        {bin("teleop_follower"), "--config", source("config/nodes/follower.yaml"), "--set", set}, std::chrono::seconds(20));
+    EXPECT_EQ(r.exit_status, 2) << r.output;
+    EXPECT_NE(r.output.find("config error: " + source("config/nodes/follower.yaml") + " (--set " + set + "): " + expected),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(r.output.find("starting"), std::string::npos) << "must fail before joining the network";
+  }
+}
 
 }  // namespace
 }  // namespace teleop::test

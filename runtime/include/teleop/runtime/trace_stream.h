@@ -29,6 +29,7 @@ class TraceStream {
   /// file and ends the thread. Throws std::runtime_error on a write error.
   void stop();
 
+  /// Rows in the file (flushed to the kernel).
   uint64_t rows_written() const { return written_.load(); }
   /// Rows the ring overwrote before the writer got to them (a stalled disk).
   uint64_t rows_lost() const { return lost_.load(); }

@@ -1,0 +1,101 @@
+#include "teleop/runtime/trace_stream.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "teleop/runtime/trace_recorder.h"
+#include "test_helpers.h"
+
+namespace teleop::runtime {
+namespace {
+
+std::vector<std::string> lines_of(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// the loop's side: `rows` rows, row i holding (i, 2i), 10 us apart (a trace is written while this runs)
+void record(TraceRecorder& trace, int rows) {
+  for (int i = 0; i < rows; ++i) {
+    double* row = trace.begin_row(int64_t{i} * 1000);
+    row[0] = i;
+    row[1] = 2.0 * i;
+    if (i % 100 == 0) std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  trace.finish();
+}
+
+TEST(TraceStream, WritesEveryRowInOrderWhileTheLoopRecords) {
+  test::TempDir dir("trace_stream");
+  TraceRecorder trace({"i", "twice"}, 4096);
+  TraceStream stream(trace, dir.path("t.csv"), 1'000'000);
+  record(trace, 20'000);
+  stream.stop();
+  EXPECT_EQ(stream.rows_written(), 20'000u);
+  EXPECT_EQ(stream.rows_lost(), 0u);
+  const auto lines = lines_of(dir.path("t.csv"));
+  ASSERT_EQ(lines.size(), 20'001u);
+  EXPECT_EQ(lines[0], "t_s,i,twice");
+  EXPECT_EQ(lines[1], "0.000000000,0,0");
+  EXPECT_EQ(lines[20'000], "0.019999000,19999,39998");
+}
+
+TEST(TraceStream, LeavesTheRowsSoFarInTheFileBeforeTheEnd) {
+  // what a SIGKILL leaves: the file up to the writer's last period, whole rows only
+  test::TempDir dir("trace_stream");
+  TraceRecorder trace({"i", "twice"}, 4096);
+  TraceStream stream(trace, dir.path("t.csv"), 1'000'000);
+  for (int i = 0; i < 500; ++i) {
+    double* row = trace.begin_row(int64_t{i} * 1000);
+    row[0] = i;
+    row[1] = 2.0 * i;
+  }
+  for (int i = 0; i < 5000 && stream.rows_written() < 499; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ASSERT_EQ(stream.rows_written(), 499u);
+  const auto lines = lines_of(dir.path("t.csv"));
+  // the row being filled (499) is not complete yet; every one before it is there
+  ASSERT_EQ(lines.size(), 500u);
+  EXPECT_EQ(lines.back(), "0.000498000,498,996");
+  trace.finish();
+  stream.stop();
+  EXPECT_EQ(lines_of(dir.path("t.csv")).size(), 501u);
+}
+
+TEST(TraceStream, CountsTheRowsTheRingOverwroteBeforeTheWriterCame) {
+  test::TempDir dir("trace_stream");
+  TraceRecorder trace({"i", "twice"}, 8);
+  TraceStream stream(trace, dir.path("t.csv"), 200'000'000);  // a writer far slower than the ring
+  for (int i = 0; i < 1000; ++i) {
+    double* row = trace.begin_row(int64_t{i} * 1000);
+    row[0] = i;
+    row[1] = 2.0 * i;
+  }
+  trace.finish();
+  stream.stop();
+  EXPECT_EQ(stream.rows_written() + stream.rows_lost(), 1000u);
+  EXPECT_GT(stream.rows_lost(), 0u);
+  // what was written is whole and in order
+  const auto lines = lines_of(dir.path("t.csv"));
+  EXPECT_EQ(lines.size(), stream.rows_written() + 1);
+  EXPECT_EQ(lines.back(), "0.000999000,999,1998");
+}
+
+TEST(TraceStream, NamesAFileItCannotWrite) {
+  TraceRecorder trace({"a"}, 8);
+  try {
+    TraceStream stream(trace, "/nonexistent/dir/t.csv");
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/t.csv"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace teleop::runtime
