@@ -36,13 +36,13 @@ double* TraceRecorder::begin_row(int64_t now_ns) {
 void TraceRecorder::finish() { complete_.store(recorded(), std::memory_order_release); }
 
 bool TraceRecorder::copy_row(uint64_t index, int64_t& t_ns, double* values) const {
-  if (index >= rows_complete() || !held(index)) return false;
+  if (index >= rows_complete() || !safely_held(index)) return false;
   const uint64_t slot = index % capacity_rows_;
   t_ns = times_ns_[slot];
   std::copy_n(values_.data() + slot * columns_.size(), columns_.size(), values);
-  // still held after the copy: the recorder did not start overwriting it meanwhile
+  // still in the newest half after the copy: the recorder did not come near it meanwhile
   std::atomic_thread_fence(std::memory_order_acquire);
-  return held(index);
+  return safely_held(index);
 }
 
 void TraceRecorder::write_header(FILE* f, const std::vector<std::string>& columns) {

@@ -22,8 +22,8 @@ TraceStream::~TraceStream() {
 
 void TraceStream::run(int64_t period_ns) {
   while (!stop_.load()) {
-    if (!drain()) failed_ = true;
     std::this_thread::sleep_for(std::chrono::nanoseconds(period_ns));
+    if (!stop_.load() && !drain()) failed_ = true;
   }
 }
 

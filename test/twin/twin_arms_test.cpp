@@ -176,6 +176,9 @@ TEST_F(TwinArmsNodeTest, EachArmFollowsItsOwnLeaderArm) {
   JointVector right_q = right_home;
   left_q[kWrist] += 0.4;
   right_q[4] -= 0.3;
+  // the leaders are heard at home first: a twin joins its leader from where it stands at a calm
+  // speed (coupled_robot.h), and follows it as it is once joined
+  hold(left_home, right_home, 50);
   hold(left_q, right_q, 500);
   EXPECT_EQ(node->state(), msg::STATE_RUNNING);
   auto q = [](const msg::JointState& s) { return s.q_rad(); };
@@ -195,6 +198,7 @@ TEST_F(TwinArmsNodeTest, RendersAnArmsConstraintOnlyToItsOwnLeaderArm) {
   // the left leader turns its wrist past the joint's limit: the twin's left wrist stops there
   JointVector left_q = left_home;
   left_q[kWrist] = kWristLimitRad + 0.1;
+  hold(left_home, right_home, 50);  // joined at home first (coupled_robot.h)
   hold(left_q, right_home, 700);
   auto tau = [](const msg::JointTorque& t) { return t.tau_nm(); };
   const double left_fb = LeaderArm::newest(left.feedback, tau, kWrist);

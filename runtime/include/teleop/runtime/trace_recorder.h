@@ -35,7 +35,9 @@ class TraceRecorder {
   /// Rows recorded since the start and filled completely (their index is below this).
   uint64_t rows_complete() const { return complete_.load(std::memory_order_acquire); }
   /// Copies the complete row `index` (counted from the start) into `t_ns` and `values`
-  /// (columns().size() of them). False when the ring has overwritten it already. Any thread.
+  /// (columns().size() of them). False when the row is no longer in the newest half of the ring
+  /// (the recorder is half a ring from overwriting it: a reader that far behind would race with
+  /// it) or was overwritten during the copy. Any thread.
   bool copy_row(uint64_t index, int64_t& t_ns, double* values) const;
 
   /// Writes the held rows, oldest first: header `t_s,<columns>`, then `t_s` in seconds with 9
@@ -47,8 +49,10 @@ class TraceRecorder {
 
  private:
   uint64_t recorded() const { return recorded_.load(std::memory_order_relaxed); }
-  /// The ring holds rows [recorded - capacity, recorded).
-  bool held(uint64_t index) const { return index + capacity_rows_ >= recorded_.load(std::memory_order_relaxed); }
+  /// Row `index` is in the newest half of the ring (the ring holds [recorded - capacity, recorded)).
+  bool safely_held(uint64_t index) const {
+    return index + (capacity_rows_ + 1) / 2 >= recorded_.load(std::memory_order_relaxed);
+  }
 
   std::vector<std::string> columns_;
   uint64_t capacity_rows_;
