@@ -8,6 +8,7 @@
 
 #include "teleop/common/clock.h"
 #include "teleop/follower/follower_node.h"
+#include "teleop/robot/mujoco_backend.h"
 
 namespace teleop::follower {
 namespace {
@@ -19,7 +20,7 @@ FollowerConfig shipped_config() {
 }
 
 // a command that keeps the arm moving a little, so nothing settles into a cache-friendly rest
-ValidCommand moving_command(const ArmState& arm, uint64_t k) {
+ValidCommand moving_command(const robot::ArmState& arm, uint64_t k) {
   ValidCommand c;
   c.mode = msg::CONTROL_JOINT_IMPEDANCE;
   for (size_t i = 0; i < 7; ++i) {
@@ -31,7 +32,7 @@ ValidCommand moving_command(const ArmState& arm, uint64_t k) {
 }
 
 void BM_BareMjStep(benchmark::State& state) {
-  MujocoHardware hw(shipped_config().mujoco);
+  robot::MujocoHardware hw(robot::mujoco_config(*shipped_config().hardware));
   const mjModel* m = hw.simulation().model();
   mjData* d = hw.simulation().data();
   for (auto _ : state) mj_step(m, d);
@@ -39,8 +40,8 @@ void BM_BareMjStep(benchmark::State& state) {
 BENCHMARK(BM_BareMjStep);
 
 void BM_HardwareWriteRead(benchmark::State& state) {
-  MujocoHardware hw(shipped_config().mujoco);
-  ArmState arm;
+  robot::MujocoHardware hw(robot::mujoco_config(*shipped_config().hardware));
+  robot::ArmState arm;
   JointVector tau{};
   for (auto _ : state) {
     benchmark::DoNotOptimize(hw.write(tau));
@@ -51,10 +52,10 @@ BENCHMARK(BM_HardwareWriteRead);
 
 void control_step(benchmark::State& state, msg::ControlMode mode) {
   const FollowerConfig config = shipped_config();
-  MujocoHardware hw(config.mujoco);
+  robot::MujocoHardware hw(robot::mujoco_config(*config.hardware));
   ArmControl control(config.control, 1e-3);
-  ArmState arm;
-  if (hw.read(arm) != HardwareStatus::kOk) state.SkipWithError("hardware read failed");
+  robot::ArmState arm;
+  if (hw.read(arm) != robot::HardwareStatus::kOk) state.SkipWithError("hardware read failed");
   uint64_t k = 0;
   JointVector tau{};
   for (auto _ : state) {

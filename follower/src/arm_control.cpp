@@ -40,7 +40,7 @@ ArmControl::ArmControl(const ArmControlConfig& config, double cycle_s)
   }
 }
 
-void ArmControl::load_state(const ArmState& arm) {
+void ArmControl::load_state(const robot::ArmState& arm) {
   state_.q = first_joints(arm.q_rad);
   state_.dq = first_joints(arm.dq_radps);
 }
@@ -66,7 +66,7 @@ void ArmControl::load_command(const ValidCommand& c) {
   }
 }
 
-const control::JointVector& ArmControl::compute(const ArmState& arm, const ValidCommand& command) {
+const control::JointVector& ArmControl::compute(const robot::ArmState& arm, const ValidCommand& command) {
   load_state(arm);
   load_command(command);
   switch_.select(static_cast<int>(command.mode));
@@ -74,7 +74,7 @@ const control::JointVector& ArmControl::compute(const ArmState& arm, const Valid
   return tau_;
 }
 
-void ArmControl::estimate(const ArmState& arm) {
+void ArmControl::estimate(const robot::ArmState& arm) {
   load_state(arm);
   const control::JointVector applied = first_joints(arm.tau_measured_nm);
   observer_.update(state_, applied);

@@ -86,10 +86,14 @@ ArmControlConfig read_control(const ConfigNode& c, size_t n, bool per_arm) {
 FollowerConfig arm_config(const FollowerConfig& shared, const std::string& name, const ConfigNode& a) {
   FollowerConfig c = shared;
   c.arm = name;
-  c.mujoco.joint_prefix = a.get_string("joint_prefix");
-  c.mujoco.ee_site = a.get_string("ee_site");
+  // the arms share one simulated scene: only the simulation has several arms today
+  if (std::dynamic_pointer_cast<const robot::MujocoHardwareSpec>(shared.hardware) == nullptr) {
+    throw a.error("joint_prefix", std::string("follower.arms needs the mujoco hardware, not ") + shared.hardware->backend());
+  }
+  c.joint_prefix = a.get_string("joint_prefix");
+  c.ee_site = a.get_string("ee_site");
   c.control.model_path = sim::get_model_path(a, "control_model");
-  c.control.ee_site = c.mujoco.ee_site;
+  c.control.ee_site = c.ee_site;
   if (a.has("rest_posture_rad")) {
     const JointVector rest = read_joint_list(a, "rest_posture_rad", c.joints, kJointAngleRange, 0.0);
     c.control.rest_posture_rad = Eigen::Map<const control::JointVector>(rest.data());
@@ -99,17 +103,14 @@ FollowerConfig arm_config(const FollowerConfig& shared, const std::string& name,
 
 }  // namespace
 
-FollowerConfig parse_follower_config(const ConfigNode& root) {
+FollowerConfig parse_follower_config(const ConfigNode& root, const robot::HardwareRegistry& hardware) {
   const ConfigNode s = root.child("follower");
   FollowerConfig c;
   c.joints = read_joint_count(s);
   if (c.joints != static_cast<size_t>(control::kDof)) {
     throw s.error("joints", "the follower drives a " + std::to_string(control::kDof) + "-joint arm");
   }
-  s.get_choice("hardware", {"mujoco"}, "mujoco");
-  const ConfigNode mujoco = s.child("mujoco");
-  c.mujoco.model_path = sim::get_model_path(mujoco, "model");
-  c.mujoco.keyframe = mujoco.get_string("keyframe", "");
+  c.hardware = hardware.parse(s);
   c.command_source = s.get_choice("command_source", {"leader", "twin"}, "leader") == "twin"
                          ? FollowerConfig::CommandSource::kTwin
                          : FollowerConfig::CommandSource::kLeader;
@@ -133,8 +134,6 @@ FollowerConfig parse_follower_config(const ConfigNode& root) {
   c.hold_damping_nms_per_rad = s.get_double("hold_damping_nms_per_rad", Range{0, 1e4}, c.hold_damping_nms_per_rad);
   c.control = read_control(s.child("control"), c.joints, s.has("arms"));
   c.reflex = read_reflex(s, c.joints);
-  c.trace_box_task = s.get_bool("trace_box_task", false);
-  if (c.trace_box_task && !s.has("arms")) throw s.error("trace_box_task", "needs the two arms of follower.arms");
   if (s.has("tracked_objects")) {
     if (!s.has("arms")) throw s.error("tracked_objects", "needs the shared scene of follower.arms");
     c.tracked_objects.bodies = s.get_string_list("tracked_objects");
@@ -143,8 +142,8 @@ FollowerConfig parse_follower_config(const ConfigNode& root) {
   return c;
 }
 
-std::vector<FollowerConfig> parse_follower_arms(const ConfigNode& root) {
-  return runtime::read_arm_configs(root.child("follower"), parse_follower_config(root), arm_config);
+std::vector<FollowerConfig> parse_follower_arms(const ConfigNode& root, const robot::HardwareRegistry& hardware) {
+  return runtime::read_arm_configs(root.child("follower"), parse_follower_config(root, hardware), arm_config);
 }
 
 }  // namespace teleop::follower

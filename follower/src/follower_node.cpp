@@ -5,23 +5,16 @@
 #include <stdexcept>
 
 #include "teleop/common/clock.h"
-#include "teleop/follower/mujoco_hardware.h"
 #include "teleop/transport/arm_topic.h"
 #include "teleop/transport/joint_fields.h"
 
 namespace teleop::follower {
 namespace {
 
-std::unique_ptr<RobotHardware> make_mujoco(const FollowerConfig& config, double rate_hz) {
-  MujocoHardwareConfig mujoco = config.mujoco;
-  mujoco.period_s = 1.0 / rate_hz;
-  return std::make_unique<MujocoHardware>(mujoco);
-}
-
 // the configured limits, tightened to what the robot itself can do
-JointLimits effective_limits(const FollowerConfig& config, const RobotHardware& hardware) {
+JointLimits effective_limits(const FollowerConfig& config, const robot::RobotHardware& hardware) {
   JointLimits l = config.limits;
-  const HardwareLimits h = hardware.limits();
+  const robot::HardwareLimits h = hardware.limits();
   for (size_t i = 0; i < config.joints; ++i) {
     l.q_min_rad[i] = std::max(l.q_min_rad[i], h.q_min_rad[i]);
     l.q_max_rad[i] = std::min(l.q_max_rad[i], h.q_max_rad[i]);
@@ -46,9 +39,9 @@ const transport::TopicSpec<msg::JointCommand>& joint_topic(const FollowerConfig&
 }  // namespace
 
 FollowerNode::FollowerNode(const FollowerConfig& config, runtime::NodeContext& context)
-    : FollowerNode(config, make_mujoco(config, context.node.rate_hz), context) {}
+    : FollowerNode(config, config.hardware->make(1.0 / context.node.rate_hz), context) {}
 
-FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<RobotHardware> hardware,
+FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<robot::RobotHardware> hardware,
                            runtime::NodeContext& context)
     : config_(config),
       hardware_(std::move(hardware)),
@@ -75,7 +68,7 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<RobotHa
   st.arm(transport::arm_label(config.arm));
   transport::presize_joint_state(st, config.joints);
   wrench_pub_.sample().frame("base");
-  if (hardware_->read(arm_) != HardwareStatus::kOk) throw std::runtime_error("the robot hardware cannot be read");
+  if (hardware_->read(arm_) != robot::HardwareStatus::kOk) throw std::runtime_error("the robot hardware cannot be read");
   // until a command arrives, hold the pose the robot is in, from the torque it holds it with
   hold_current_pose(active_, config_.hold_stiffness_nm_per_rad, config_.hold_damping_nms_per_rad);
   limiter_.reset(arm_.tau_measured_nm);
@@ -266,7 +259,7 @@ void FollowerNode::publish_state() {
 void FollowerNode::cycle(const CycleTick& tick) {
   // read, compute, write: the torque acts on the state it was computed from, also on a scene
   // shared by several arms, which moves on only once every arm wrote (follower_arms.cpp)
-  const bool read = hardware_->read(arm_) == HardwareStatus::kOk;
+  const bool read = hardware_->read(arm_) == robot::HardwareStatus::kOk;
   control_.estimate(arm_);
   // the watchdog counts control cycles (their deadlines): a cycle released late neither
   // shortens nor stretches the timeout
@@ -277,7 +270,7 @@ void FollowerNode::cycle(const CycleTick& tick) {
   apply_passivity();
   command_torque(*controlled_);
   // a robot that refuses a command or cannot be read is a fault: hold what we have, report it
-  if (hardware_->write(command_nm_) != HardwareStatus::kOk || !read) {
+  if (hardware_->write(command_nm_) != robot::HardwareStatus::kOk || !read) {
     ++hardware_faults_;
     state_ = msg::STATE_FAULT;
   }

@@ -16,7 +16,7 @@ void write_object_pose(const sim::BodyState& state, msg::ObjectPose& sample) {
   transport::set_vector3(sample.world_twist().angular_radps(), state.angular_radps.data());
 }
 
-ObjectPoseFeed::ObjectPoseFeed(const ObjectPoseFeedConfig& config, std::shared_ptr<const MujocoScene> scene,
+ObjectPoseFeed::ObjectPoseFeed(const ObjectPoseFeedConfig& config, std::shared_ptr<const robot::MujocoScene> scene,
                                runtime::NodeContext& context)
     : scene_(std::move(scene)),
       every_cycles_(static_cast<uint64_t>(std::max(1.0, std::round(context.node.rate_hz / config.rate_hz)))) {

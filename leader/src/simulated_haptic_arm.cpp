@@ -6,7 +6,7 @@ namespace teleop::leader {
 
 SimulatedHapticArm::SimulatedHapticArm(const HapticArmConfig& config) : config_(config), arm_(config.model) {
   if (config.model.keyframe.empty()) arm_.place(config.start_rad);
-  if (arm_.read(measured_) != follower::HardwareStatus::kOk) throw std::runtime_error("the simulated haptic arm cannot be read");
+  if (arm_.read(measured_) != robot::HardwareStatus::kOk) throw std::runtime_error("the simulated haptic arm cannot be read");
   // the operator starts by holding the device where it is
   target_q_ = measured_.q_rad;
 }
@@ -19,7 +19,7 @@ void SimulatedHapticArm::set_operator_target(const JointVector& q_rad, const Joi
 }
 
 bool SimulatedHapticArm::read(DeviceState& state) {
-  if (arm_.read(measured_) != follower::HardwareStatus::kOk) return false;
+  if (arm_.read(measured_) != robot::HardwareStatus::kOk) return false;
   state.q_rad = measured_.q_rad;
   state.dq_radps = measured_.dq_radps;
   state.tau_operator_nm = operator_nm_;
@@ -32,7 +32,7 @@ bool SimulatedHapticArm::write(const JointVector& feedback_nm) {
                       config_.hand_damping_nms_per_rad * (target_dq_[i] - measured_.dq_radps[i]) + intended_nm_[i];
     applied_[i] = operator_nm_[i] + feedback_nm[i];
   }
-  return arm_.write(applied_) == follower::HardwareStatus::kOk;
+  return arm_.write(applied_) == robot::HardwareStatus::kOk;
 }
 
 }  // namespace teleop::leader

@@ -16,6 +16,7 @@ NodeConfig parse_node_config(const ConfigNode& section, const std::string& defau
                     : mode == "optional" ? RealtimeMode::kOptional
                                          : RealtimeMode::kOff;
   c.realtime.priority = static_cast<int>(section.get_int("realtime_priority", Range{1, 99}, 80));
+  c.probes = section.get_string_list("probes");
   return c;
 }
 

@@ -1,4 +1,5 @@
 #include "teleop/follower/follower_node.h"
+#include "teleop/robot/mujoco_backend.h"
 
 #include <gtest/gtest.h>
 
@@ -24,8 +25,8 @@ FollowerConfig shipped_config() {
 }
 
 // the hardware, built here so the tests can reach into the simulation (forces, friction)
-std::unique_ptr<MujocoHardware> hardware(const FollowerConfig& c, bool friction = true) {
-  auto hw = std::make_unique<MujocoHardware>(c.mujoco);
+std::unique_ptr<robot::MujocoHardware> hardware(const FollowerConfig& c, bool friction = true) {
+  auto hw = std::make_unique<robot::MujocoHardware>(robot::mujoco_config(*c.hardware));
   if (!friction) {
     mjModel* m = hw->simulation().model();
     for (int i = 0; i < m->nv; ++i) m->dof_frictionloss[i] = 0;
@@ -66,7 +67,7 @@ class FollowerNodeTest : public ::testing::Test {
  protected:
   FollowerConfig config = shipped_config();
   test::NodeHarness harness{"follower"};
-  MujocoHardware* sim = nullptr;  // owned by the node
+  robot::MujocoHardware* sim = nullptr;  // owned by the node
   std::unique_ptr<FollowerNode> node;
   std::unique_ptr<LeaderPeer> leader;
 
@@ -125,7 +126,7 @@ TEST_F(FollowerNodeTest, TracksAJointImpedanceCommandAndPublishesItsState) {
 TEST_F(FollowerNodeTest, HoldsItsPoseWhenCommandsStopAndResumesWhenTheyReturn) {
   for (int i = 0; i < 500; ++i) step(0.05);
   ASSERT_EQ(node->state(), msg::STATE_RUNNING);
-  const ArmState before = node->arm();
+  const robot::ArmState before = node->arm();
   for (int i = 0; i < 300; ++i) step(0.0, /*send=*/false);
   EXPECT_EQ(node->state(), msg::STATE_SAFE_HOLD);
   EXPECT_EQ(counter("watchdog_trips"), 1.0);

@@ -28,7 +28,7 @@ ConfigNode box_task_config(const std::string& extra) {
   for (std::string line; std::getline(in, line);) {
     if (line.rfind("  tracked_object", 0) != 0) yaml += line + "\n";
   }
-  const std::string anchor = "  trace_box_task: true";
+  const std::string anchor = "  hardware: mujoco";
   yaml.replace(yaml.find(anchor), anchor.size(), anchor + "\n" + extra);
   return ConfigNode::load_string(yaml, kBoxTaskFile);
 }

@@ -49,7 +49,10 @@ TEST(TwoArmProcesses, EachHandMovesOnlyItsOwnArm) {
   for (const std::string side : {"left", "right"}) {
     leader_args.insert(leader_args.end(), {"--set", "leader.arms." + side + ".recording=" + dir + "/" + side + ".csv"});
   }
-  RunningProcess follower(args("follower", "follower_box_task.yaml"));
+  auto follower_args = args("follower", "follower_box_task.yaml");
+  // the box task's probe, as its experiment asks for it
+  follower_args.insert(follower_args.end(), {"--set", "node.probes=[box_task]"});
+  RunningProcess follower(follower_args);
   RunningProcess leader(leader_args);
   ASSERT_EQ(leader.stop(0, std::chrono::seconds(30)), 0) << leader.output();
   ASSERT_EQ(follower.stop(0, std::chrono::seconds(30)), 0) << follower.output();
@@ -60,7 +63,7 @@ TEST(TwoArmProcesses, EachHandMovesOnlyItsOwnArm) {
   EXPECT_NEAR(last(trace.column("right_q_4")), kRightHome[4] + 0.3, 0.03);
   EXPECT_NEAR(last(trace.column("right_q_6")), kRightHome[6], 0.03);
 
-  // the box task's columns (follower.trace_box_task): the box stays in its socket, on its supports
+  // the box task's columns (the box_task probe): the box stays in its socket, on its supports
   EXPECT_NEAR(last(trace.column("box_z")), 0.80, 0.005);
   EXPECT_NEAR(last(trace.column("support_n")), 9.81, 0.5) << "1 kg resting on the table";
   EXPECT_EQ(last(trace.column("left_squeeze_n")), 0.0);

@@ -13,7 +13,7 @@
 #include "teleop/control/controllers.h"
 #include "teleop/control/estimators.h"
 #include "teleop/follower/command_validator.h"
-#include "teleop/follower/robot_hardware.h"
+#include "teleop/robot/robot_hardware.h"
 #include "teleop/sim/mujoco_model.h"
 
 namespace teleop::follower {
@@ -45,10 +45,10 @@ class ArmControl {
 
   /// Selects the command's mode (blending) and returns the total link-side torque, gravity
   /// included. Real-time safe.
-  const control::JointVector& compute(const ArmState& arm, const ValidCommand& command);
+  const control::JointVector& compute(const robot::ArmState& arm, const ValidCommand& command);
   /// Feeds the estimators with the new state and the torque that acted over the last cycle
   /// (the hardware's measured torque). Real-time safe.
-  void estimate(const ArmState& arm);
+  void estimate(const robot::ArmState& arm);
 
   /// g(q) at the state of the last compute()/estimate().
   const control::JointVector& gravity() const { return dynamics_.gravity(); }
@@ -65,7 +65,7 @@ class ArmControl {
   bool blending() const { return switch_.blending(); }
 
  private:
-  void load_state(const ArmState& arm);
+  void load_state(const robot::ArmState& arm);
   void load_command(const ValidCommand& command);
 
   ArmControlConfig config_;

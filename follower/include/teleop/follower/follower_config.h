@@ -9,7 +9,8 @@
 #include "teleop/follower/arm_control.h"
 #include "teleop/follower/command_validator.h"
 #include "teleop/follower/safety_reflex.h"
-#include "teleop/follower/mujoco_hardware.h"
+#include "teleop/robot/hardware_registry.h"
+#include "teleop/robot/mujoco_backend.h"
 #include "teleop/teleoperation/architecture.h"
 
 namespace teleop::follower {
@@ -27,8 +28,12 @@ struct FollowerConfig {
   /// (transport/arm_topic.h).
   std::string arm;
   size_t joints = 7;
-  /// The robot: a MuJoCo simulation of the arm (real arms plug in as other RobotHardware).
-  MujocoHardwareConfig mujoco;
+  /// The robot: the backend `follower.hardware` names with its settings (robot/hardware_registry.h);
+  /// the simulation (`mujoco`) in every build, a real arm as another backend.
+  std::shared_ptr<const robot::HardwareSpec> hardware;
+  /// An arm of a multi-arm robot: its joints and flange site in the shared scene (follower.arms).
+  std::string joint_prefix;
+  std::string ee_site = "ee_site";
   /// Where joint commands come from: the leader (teleoperation) or the twin (hardware in the loop).
   enum class CommandSource { kLeader, kTwin } command_source = CommandSource::kLeader;
   /// Command limits; the torque limits are further bounded by what the hardware reports.
@@ -46,20 +51,21 @@ struct FollowerConfig {
   ArmControlConfig control;
   /// The reflexes on the external-load estimate and the joint speeds (safety_reflex.h).
   SafetyReflexConfig reflex;
-  /// A two-arm follower on the box scene traces the box task's quantities (box_task_trace.h).
-  bool trace_box_task = false;
   /// Objects of the shared scene whose measured pose goes to the twin (object_pose_feed.h).
   ObjectPoseFeedConfig tracked_objects;
   /// The architecture the follower plays its part in (absent: a plain follower of `command_source`).
   std::optional<teleoperation::TeleoperationConfig> teleoperation;
 };
 
-/// Reads the `follower:` section; throws ConfigError naming file, key and problem.
-FollowerConfig parse_follower_config(const ConfigNode& root);
+/// Reads the `follower:` section, the robot from `hardware`'s backends; throws ConfigError naming
+/// file, key and problem.
+FollowerConfig parse_follower_config(const ConfigNode& root,
+                                     const robot::HardwareRegistry& hardware = robot::simulated_hardware());
 
 /// One config per arm: the `follower:` section with each arm's own keys applied (each arm on its
 /// prefix of the shared scene), in the file's order; a single unnamed arm without
 /// `follower.arms`. Throws ConfigError naming file and key.
-std::vector<FollowerConfig> parse_follower_arms(const ConfigNode& root);
+std::vector<FollowerConfig> parse_follower_arms(const ConfigNode& root,
+                                                const robot::HardwareRegistry& hardware = robot::simulated_hardware());
 
 }  // namespace teleop::follower

@@ -1,6 +1,6 @@
 #pragma once
 // The follower robot: validates joint and Cartesian commands, runs the arm's controllers
-// (ArmControl) on a RobotHardware, watches for silent or dead command sources, limits the
+// (ArmControl) on a robot::RobotHardware, watches for silent or dead command sources, limits the
 // torque, and publishes its state with the estimated external torque and end-effector wrench.
 
 #include <teleop/msg/arm.h>
@@ -14,7 +14,7 @@
 #include "teleop/follower/follower_config.h"
 #include "teleop/follower/joint_rejoin.h"
 #include "teleop/follower/passive_reference.h"
-#include "teleop/follower/robot_hardware.h"
+#include "teleop/robot/robot_hardware.h"
 #include "teleop/follower/torque_limiter.h"
 #include "teleop/runtime/node_runner.h"
 #include "teleop/transport/publication.h"
@@ -27,10 +27,10 @@ class FollowerNode final : public runtime::NodeLogic {
   /// Reads the `follower:` section.
   static FollowerConfig parse_config(const ConfigNode& root) { return parse_follower_config(root); }
 
-  /// Drives the MuJoCo arm of `config.mujoco`.
+  /// Drives the robot of `config.hardware`.
   FollowerNode(const FollowerConfig& config, runtime::NodeContext& context);
   /// Drives `hardware` (tests, other robots).
-  FollowerNode(const FollowerConfig& config, std::unique_ptr<RobotHardware> hardware, runtime::NodeContext& context);
+  FollowerNode(const FollowerConfig& config, std::unique_ptr<robot::RobotHardware> hardware, runtime::NodeContext& context);
 
   void cycle(const CycleTick& tick) override;
   msg::NodeState state() const override { return state_; }
@@ -40,7 +40,7 @@ class FollowerNode final : public runtime::NodeLogic {
   void trace_row(double* row) const override;
 
   /// For tests and benchmarks: what the robot measured last, and the control stack.
-  const ArmState& arm() const { return arm_; }
+  const robot::ArmState& arm() const { return arm_; }
   const ArmControl& control() const { return control_; }
   /// The torque written to the hardware in the last cycle, before its gravity compensation.
   const JointVector& commanded_torque() const { return command_nm_; }
@@ -61,7 +61,7 @@ class FollowerNode final : public runtime::NodeLogic {
   void publish_state();
 
   FollowerConfig config_;
-  std::unique_ptr<RobotHardware> hardware_;
+  std::unique_ptr<robot::RobotHardware> hardware_;
   ArmControl control_;
   CommandValidator validator_;
   TorqueLimiter limiter_;
@@ -72,7 +72,7 @@ class FollowerNode final : public runtime::NodeLogic {
   std::string name_;
   transport::Publication<msg::JointState> state_pub_;
   transport::Publication<msg::WrenchStamped> wrench_pub_;
-  ArmState arm_{};
+  robot::ArmState arm_{};
   msg::NodeState state_ = msg::STATE_STARTING;
   ValidCommand active_{};
   // pfc / pfc_tdpa: the follower's end of the TDPA channel and the command it corrects

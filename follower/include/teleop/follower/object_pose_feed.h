@@ -13,7 +13,7 @@
 #include <teleop/msg/twin.h>
 
 #include "teleop/follower/follower_config.h"
-#include "teleop/follower/mujoco_scene.h"
+#include "teleop/robot/mujoco_scene.h"
 #include "teleop/runtime/node_logic.h"
 #include "teleop/runtime/node_runner.h"
 #include "teleop/sim/body_state.h"
@@ -27,7 +27,7 @@ void write_object_pose(const sim::BodyState& state, msg::ObjectPose& sample);
 class ObjectPoseFeed final : public runtime::NodeLogic {
  public:
   /// Throws std::out_of_range naming a body the scene lacks.
-  ObjectPoseFeed(const ObjectPoseFeedConfig& config, std::shared_ptr<const MujocoScene> scene,
+  ObjectPoseFeed(const ObjectPoseFeedConfig& config, std::shared_ptr<const robot::MujocoScene> scene,
                  runtime::NodeContext& context);
 
   void cycle(const CycleTick& tick) override;
@@ -41,7 +41,7 @@ class ObjectPoseFeed final : public runtime::NodeLogic {
     std::unique_ptr<transport::Publication<msg::ObjectPose>> publication;
   };
 
-  std::shared_ptr<const MujocoScene> scene_;
+  std::shared_ptr<const robot::MujocoScene> scene_;
   std::vector<Tracked> tracked_;
   uint64_t every_cycles_ = 1;
 };

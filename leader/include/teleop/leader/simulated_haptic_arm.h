@@ -7,13 +7,13 @@
 
 #include <memory>
 
-#include "teleop/follower/mujoco_hardware.h"
+#include "teleop/robot/mujoco_hardware.h"
 #include "teleop/leader/leader_device.h"
 
 namespace teleop::leader {
 
 struct HapticArmConfig {
-  follower::MujocoHardwareConfig model;
+  robot::MujocoHardwareConfig model;
   /// The operator's grip: joint stiffness [Nm/rad] and damping [Nm s/rad] of the hand.
   double hand_stiffness_nm_per_rad = 60.0;
   double hand_damping_nms_per_rad = 4.0;
@@ -36,8 +36,8 @@ class SimulatedHapticArm final : public LeaderDevice {
 
  private:
   HapticArmConfig config_;
-  follower::MujocoHardware arm_;
-  follower::ArmState measured_{};
+  robot::MujocoHardware arm_;
+  robot::ArmState measured_{};
   JointVector target_q_{};
   JointVector target_dq_{};
   JointVector intended_nm_{};

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "teleop/common/config.h"
 #include "teleop/runtime/realtime.h"
@@ -22,6 +23,9 @@ struct NodeConfig {
   uint64_t max_catch_up_cycles = 10;
   /// Locked memory and SCHED_FIFO for the loop thread.
   RealtimeConfig realtime;
+  /// Observers an experiment adds to the node, by the names its executable registered them under
+  /// (robot/scene_probes.h); empty: none.
+  std::vector<std::string> probes;
 
   int64_t period_ns() const { return static_cast<int64_t>(1e9 / rate_hz); }
 };

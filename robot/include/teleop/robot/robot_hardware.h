@@ -7,7 +7,7 @@
 
 #include "teleop/common/joint_model.h"
 
-namespace teleop::follower {
+namespace teleop::robot {
 
 /// Measured state of the arm.
 struct ArmState {
@@ -51,4 +51,4 @@ class RobotHardware {
   virtual const char* name() const = 0;
 };
 
-}  // namespace teleop::follower
+}  // namespace teleop::robot

@@ -7,11 +7,11 @@
 #include <memory>
 #include <string>
 
-#include "teleop/follower/mujoco_scene.h"
-#include "teleop/follower/robot_hardware.h"
+#include "teleop/robot/mujoco_scene.h"
+#include "teleop/robot/robot_hardware.h"
 #include "teleop/sim/actuated_joints.h"
 
-namespace teleop::follower {
+namespace teleop::robot {
 
 struct MujocoHardwareConfig : MujocoSceneConfig {
   /// The arm: the hinge joints with a motor whose names start with this ("" = every one).
@@ -52,4 +52,4 @@ class MujocoHardware final : public RobotHardware {
   int ee_body_ = -1;
 };
 
-}  // namespace teleop::follower
+}  // namespace teleop::robot

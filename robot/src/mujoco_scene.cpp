@@ -1,10 +1,10 @@
-#include "teleop/follower/mujoco_scene.h"
+#include "teleop/robot/mujoco_scene.h"
 
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
 
-namespace teleop::follower {
+namespace teleop::robot {
 namespace {
 
 void delete_data(mjData* d) { mj_deleteData(d); }
@@ -51,4 +51,4 @@ const mjtNum* MujocoScene::gravity() {
   return rest_->qfrc_bias;
 }
 
-}  // namespace teleop::follower
+}  // namespace teleop::robot

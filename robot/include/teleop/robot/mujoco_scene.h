@@ -9,7 +9,7 @@
 
 #include "teleop/sim/mujoco_model.h"
 
-namespace teleop::follower {
+namespace teleop::robot {
 
 struct MujocoSceneConfig {
   /// MJCF file of the scene.
@@ -45,4 +45,4 @@ class MujocoScene {
   bool gravity_current_ = false;
 };
 
-}  // namespace teleop::follower
+}  // namespace teleop::robot

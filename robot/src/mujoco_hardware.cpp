@@ -1,11 +1,11 @@
-#include "teleop/follower/mujoco_hardware.h"
+#include "teleop/robot/mujoco_hardware.h"
 
 #include <cmath>
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
 
-namespace teleop::follower {
+namespace teleop::robot {
 
 MujocoHardware::MujocoHardware(const MujocoHardwareConfig& config)
     : MujocoHardware(std::make_shared<MujocoScene>(config), config, true) {}
@@ -111,4 +111,4 @@ HardwareStatus MujocoHardware::read(ArmState& state) {
   return HardwareStatus::kOk;
 }
 
-}  // namespace teleop::follower
+}  // namespace teleop::robot

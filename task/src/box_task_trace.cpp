@@ -1,8 +1,8 @@
-#include "teleop/follower/box_task_trace.h"
+#include "teleop/task/box_task_trace.h"
 
-namespace teleop::follower {
+namespace teleop::task {
 
-BoxTaskTrace::BoxTaskTrace(std::shared_ptr<const MujocoScene> scene)
+BoxTaskTrace::BoxTaskTrace(std::shared_ptr<const robot::MujocoScene> scene)
     : scene_(std::move(scene)), probe_(scene_->simulation().model()) {}
 
 void BoxTaskTrace::trace_columns(std::vector<std::string>& columns) const {
@@ -21,4 +21,10 @@ void BoxTaskTrace::trace_row(double* row) const {
   *row = s.arm_collision_n;
 }
 
-}  // namespace teleop::follower
+void add_box_task_probe(robot::SceneProbes& probes) {
+  probes.add("box_task", [](std::shared_ptr<const robot::MujocoScene> scene) -> std::unique_ptr<runtime::NodeLogic> {
+    return std::make_unique<BoxTaskTrace>(std::move(scene));
+  });
+}
+
+}  // namespace teleop::task

@@ -1,4 +1,4 @@
-#include "teleop/follower/mujoco_hardware.h"
+#include "teleop/robot/mujoco_hardware.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include "allocation_counter.h"
 #include "test_helpers.h"
 
-namespace teleop::follower {
+namespace teleop::robot {
 namespace {
 
 MujocoHardwareConfig wall_scene() {
@@ -88,9 +88,9 @@ TEST(MujocoHardware, ReadAndWriteDoNotAllocate) {
 }
 
 }  // namespace
-}  // namespace teleop::follower
+}  // namespace teleop::robot
 
-namespace teleop::follower {
+namespace teleop::robot {
 namespace {
 
 MujocoHardwareConfig two_arm_arm(const std::string& side) {
@@ -150,4 +150,4 @@ TEST(MujocoHardwareOnASharedScene, NamesTheMissingArmOrSite) {
 }
 
 }  // namespace
-}  // namespace teleop::follower
+}  // namespace teleop::robot
