@@ -10,10 +10,10 @@
 #include "teleop/common/config.h"
 #include "teleop/experiment/experiment_runner.h"
 #include "teleop/experiment/results_table.h"
+#include "teleop/experiment/network_sweep.h"
 #include "teleop/experiment/soak.h"
 #include "teleop/launcher/launcher.h"
 #include "teleop/launcher/reset_request.h"
-#include "teleop/launcher/sweep.h"
 
 int main(int argc, char** argv) {
   using namespace teleop::launcher;
@@ -128,7 +128,7 @@ int main(int argc, char** argv) {
       return result.failures > 0 ? 1 : 0;
     }
     const Scenario scenario = load_scenario(scenario_path);
-    if (sweep_cmd->parsed()) return sweep(scenario, options, profiles, csv_path).failed_runs == 0 ? 0 : 1;
+    if (sweep_cmd->parsed()) return teleop::experiment::network_sweep(scenario, options, profiles, csv_path).failed_runs == 0 ? 0 : 1;
     const LaunchResult result = launch(scenario, options);
     std::printf("%s", format_summary(result.summary, scenario.name).c_str());
     std::printf("\nreports: %s\n", result.report_dir.c_str());

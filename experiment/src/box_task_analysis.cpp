@@ -19,15 +19,15 @@ double arm_mad_rad(const Trace& follower, const std::vector<double>& t_s, const 
 
 }  // namespace
 
-task::BoxTaskSeries box_task_series(const Trace& follower) {
+box_task::BoxTaskSeries box_task_series(const Trace& follower) {
   std::vector<const std::vector<double>*> columns;
-  for (size_t c = 1; c < task::kBoxTaskColumns.size(); ++c) columns.push_back(&follower.column(task::kBoxTaskColumns[c]));
-  task::BoxTaskSeries series;
+  for (size_t c = 1; c < box_task::kBoxTaskColumns.size(); ++c) columns.push_back(&follower.column(box_task::kBoxTaskColumns[c]));
+  box_task::BoxTaskSeries series;
   series.samples.reserve(follower.t_s.size());
   for (size_t i = 0; i < follower.t_s.size(); ++i) {
     // the columns in the order of BoxTaskSample's fields (kBoxTaskColumns)
     auto v = [&](size_t c) { return (*columns[c])[i]; };
-    task::BoxTaskSample s;
+    box_task::BoxTaskSample s;
     s.t_s = follower.t_s[i];
     s.box_m = {v(0), v(1), v(2)};
     s.left_m = {v(3), v(4), v(5)};

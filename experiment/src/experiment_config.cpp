@@ -6,7 +6,7 @@
 #include "teleop/launcher/launcher.h"
 #include "teleop/launcher/scenario.h"
 #include "teleop/sim/mujoco_model.h"
-#include "teleop/task/box_task_probe.h"
+#include "teleop/box_task/box_task_probe.h"
 
 namespace teleop::experiment {
 namespace {
@@ -17,7 +17,7 @@ void parse_box_task(const ConfigNode& a, AnalysisConfig& c) {
   if (c.arms.empty()) throw a.error("arms", "the box task needs the arms whose columns the traces prefix, e.g. [left, right]");
   const std::string scene = a.get_path("scene");
   try {
-    c.shelf = task::shelf_region(sim::MujocoModel::load(scene).model());
+    c.shelf = box_task::shelf_region(sim::MujocoModel::load(scene).model());
   } catch (const std::exception& e) {
     throw a.error("scene", e.what());
   }

@@ -104,7 +104,7 @@ RunRow analyse_run(const std::string& run, const std::string& profile, const std
     const Trace follower = read_trace((fs::path(trace_dir) / (analysis.follower + ".csv")).string());
     if (analysis.kind == AnalysedTask::kBoxTask) {
       row.metrics = analyse_arms(leader, follower, analysis);
-      row.box_task = task::evaluate_box_task(box_task_series(follower), analysis.shelf);
+      row.box_task = box_task::evaluate_box_task(box_task_series(follower), analysis.shelf);
     } else {
       row.metrics = analyse(leader, follower, analysis);
     }

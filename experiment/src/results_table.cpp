@@ -48,12 +48,12 @@ std::vector<Column> stiff_wall_columns() {
 }
 
 // a box-task metric of the row, NaN when its traces were not analysed
-double box(const RunRow& r, const std::function<double(const task::BoxTaskMetrics&)>& get) {
+double box(const RunRow& r, const std::function<double(const box_task::BoxTaskMetrics&)>& get) {
   return r.box_task ? get(*r.box_task) : kNaN;
 }
 
 std::vector<Column> box_task_columns() {
-  using M = task::BoxTaskMetrics;
+  using M = box_task::BoxTaskMetrics;
   std::vector<Column> c = {
       {"success", "success", [](const RunRow& r) { return box(r, [](const M& m) { return m.success ? 1.0 : 0.0; }); }, true},
       {"time_s", "task_time_s", [](const RunRow& r) { return box(r, [](const M& m) { return m.task_time_s; }); }},

@@ -52,22 +52,31 @@ double until_state(const Trace& trace, double from_s, Pass pass) {
   return NAN;
 }
 
-// the slowest watcher decides; a watcher without a trace then, or that never got there: NaN, and
-// `cut_short` tells whether one of them ended (was killed) before the soak did
+// How the watchers of an event reacted: after how long the slowest got there (NaN: one never
+// did while it was watched), whether that one was killed before the soak ended, and for how long
+// it was watched.
+struct Reaction {
+  double after_s = 0.0;
+  bool cut_short = false;
+  double watched_s = 0.0;
+};
+
 template <typename Pass>
-double slowest(const std::vector<ProcessTrace>& traces, const std::vector<std::string>& watchers, double from_s,
-               double soak_end_s, Pass pass, bool& cut_short) {
-  double worst = 0.0;
+Reaction slowest(const std::vector<ProcessTrace>& traces, const std::vector<std::string>& watchers, double from_s,
+                 double soak_end_s, Pass pass) {
+  Reaction r;
   for (const std::string& w : watchers) {
     const ProcessTrace* p = alive_at(traces, w, from_s);
     const double t = p ? until_state(p->trace, from_s, pass) : NAN;
     if (std::isnan(t)) {
-      cut_short = p != nullptr && p->last_s() < soak_end_s - 1.0;
-      return NAN;
+      r.after_s = NAN;
+      r.cut_short = p != nullptr && p->last_s() < soak_end_s - 1.0;
+      r.watched_s = p != nullptr ? p->last_s() - from_s : 0.0;
+      return r;
     }
-    worst = std::max(worst, t);
+    r.after_s = std::max(r.after_s, t);
   }
-  return worst;
+  return r;
 }
 
 // every cycle of one process of the robot node
@@ -118,11 +127,12 @@ void analyse_soak(const SoakConfig& config, const std::vector<SoakProcess>& proc
   for (SoakEvent& e : result.events) {
     if (const ProcessTrace* next = process_of(traces, e.node, e.incarnation + 1)) e.first_cycle_s = next->first_s();
     const std::vector<std::string>& watchers = config.watch.at(e.node);
-    bool ignored = false;
-    e.to_safe_s = slowest(traces, watchers, e.killed_s, soak_end_s, safe, ignored);
-    if (!std::isnan(e.first_cycle_s)) {
-      e.to_resume_s = slowest(traces, watchers, e.first_cycle_s, soak_end_s, running, e.interrupted);
-    }
+    e.to_safe_s = slowest(traces, watchers, e.killed_s, soak_end_s, safe).after_s;
+    if (std::isnan(e.first_cycle_s)) continue;
+    const Reaction resume = slowest(traces, watchers, e.first_cycle_s, soak_end_s, running);
+    e.to_resume_s = resume.after_s;
+    e.interrupted = std::isnan(resume.after_s) && resume.cut_short;
+    e.pending = std::isnan(resume.after_s) && !resume.cut_short && resume.watched_s < config.resume_timeout_s;
   }
   for (const ProcessTrace& p : traces) {
     if (p.process->node != config.robot) continue;
@@ -137,11 +147,12 @@ void analyse_soak(const SoakConfig& config, const std::vector<SoakProcess>& proc
 
 std::string soak_csv(const SoakResult& result) {
   std::ostringstream out;
-  out << "node,incarnation,killed_s,restarted_s,first_cycle_s,to_safe_ms,to_resume_ms,interrupted\n";
+  out << "node,incarnation,killed_s,restarted_s,first_cycle_s,to_safe_ms,to_resume_ms,interrupted,pending\n";
   char line[256];
   for (const SoakEvent& e : result.events) {
-    std::snprintf(line, sizeof line, "%s,%d,%.6f,%.6f,%.6f,%.3f,%.3f,%d\n", e.node.c_str(), e.incarnation, e.killed_s,
-                  e.restarted_s, e.first_cycle_s, e.to_safe_s * 1e3, e.to_resume_s * 1e3, e.interrupted ? 1 : 0);
+    std::snprintf(line, sizeof line, "%s,%d,%.6f,%.6f,%.6f,%.3f,%.3f,%d,%d\n", e.node.c_str(), e.incarnation, e.killed_s,
+                  e.restarted_s, e.first_cycle_s, e.to_safe_s * 1e3, e.to_resume_s * 1e3, e.interrupted ? 1 : 0,
+                  e.pending ? 1 : 0);
     out << line;
   }
   return out.str();
@@ -153,22 +164,24 @@ std::string format_soak(const SoakResult& result, const std::string& name) {
   std::ostringstream out;
   char line[256];
   out << "soak " << name << "\n";
-  std::snprintf(line, sizeof line, "%-10s %6s %14s %14s %16s %16s %11s %11s\n", "killed", "events", "to_safe_p50_ms",
-                "to_safe_max_ms", "to_resume_p50_ms", "to_resume_max_ms", "interrupted", "unrecovered");
+  std::snprintf(line, sizeof line, "%-10s %6s %14s %14s %16s %16s %11s %7s %11s\n", "killed", "events", "to_safe_p50_ms",
+                "to_safe_max_ms", "to_resume_p50_ms", "to_resume_max_ms", "interrupted", "pending", "unrecovered");
   out << line;
   for (const auto& [node, events] : by_node) {
     std::vector<double> to_safe, to_resume;
     int interrupted = 0;
+    int pending = 0;
     int unrecovered = 0;
     for (const SoakEvent* e : events) {
       to_safe.push_back(e->to_safe_s * 1e3);
       to_resume.push_back(e->to_resume_s * 1e3);
       if (e->interrupted) ++interrupted;
+      if (e->pending) ++pending;
       if (e->unrecovered()) ++unrecovered;
     }
-    std::snprintf(line, sizeof line, "%-10s %6zu %14.1f %14.1f %16.1f %16.1f %11d %11d\n", node.c_str(), events.size(),
-                  percentile(to_safe, 0.5), percentile(to_safe, 1.0), percentile(to_resume, 0.5),
-                  percentile(to_resume, 1.0), interrupted, unrecovered);
+    std::snprintf(line, sizeof line, "%-10s %6zu %14.1f %14.1f %16.1f %16.1f %11d %7d %11d\n", node.c_str(),
+                  events.size(), percentile(to_safe, 0.5), percentile(to_safe, 1.0), percentile(to_resume, 0.5),
+                  percentile(to_resume, 1.0), interrupted, pending, unrecovered);
     out << line;
   }
   std::snprintf(line, sizeof line,

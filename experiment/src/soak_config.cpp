@@ -29,6 +29,7 @@ SoakConfig load_soak(const std::string& path) {
   std::tie(c.down_min_s, c.down_max_s) = read_interval(s, "down_s", {c.down_min_s, c.down_max_s});
   c.settle_s = s.get_double("settle_s", Range{0, 600}, c.settle_s);
   c.end_s = s.get_double("end_s", Range{0, 600}, c.end_s);
+  c.resume_timeout_s = s.get_double("resume_timeout_s", Range{0.1, 3600}, c.resume_timeout_s);
   c.robot = s.get_string("robot", c.robot);
   // the scenario must name every node the soak talks about
   const launcher::Scenario scenario = launcher::load_scenario(c.scenario_path);

@@ -114,10 +114,10 @@ FollowerConfig parse_follower_config(const ConfigNode& root, const robot::Hardwa
   c.command_source = s.get_choice("command_source", {"leader", "twin"}, "leader") == "twin"
                          ? FollowerConfig::CommandSource::kTwin
                          : FollowerConfig::CommandSource::kLeader;
-  c.teleoperation = teleoperation::parse_teleoperation_config(root);
+  c.teleoperation = runtime::parse_teleoperation_config(root);
   if (c.teleoperation) {
     // model-mediated: the follower tracks the twin; every other architecture: the leader
-    const bool mmt = c.teleoperation->architecture == teleoperation::Architecture::kMmt;
+    const bool mmt = c.teleoperation->architecture == runtime::Architecture::kMmt;
     const auto implied = mmt ? FollowerConfig::CommandSource::kTwin : FollowerConfig::CommandSource::kLeader;
     if (s.has("command_source") && c.command_source != implied) {
       throw s.error("command_source", std::string("contradicts teleoperation.architecture ") +

@@ -72,11 +72,11 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<robot::
   // until a command arrives, hold the pose the robot is in, from the torque it holds it with
   hold_current_pose(active_, config_.hold_stiffness_nm_per_rad, config_.hold_damping_nms_per_rad);
   limiter_.reset(arm_.tau_measured_nm);
-  if (config.teleoperation && teleoperation::is_cartesian(config.teleoperation->architecture)) {
+  if (config.teleoperation && runtime::is_cartesian(config.teleoperation->architecture)) {
     // pfc observes its energy balance too, only pfc_tdpa corrects it
-    const bool correct = config.teleoperation->architecture == teleoperation::Architecture::kPfcTdpa;
+    const bool correct = config.teleoperation->architecture == runtime::Architecture::kPfcTdpa;
     const double h = 1.0 / context.node.rate_hz;
-    tdpa_.emplace(context.participant, context.node.name, config.arm, teleoperation::TdpaEnd::kFollower, 6, h, correct,
+    tdpa_.emplace(context.participant, context.node.name, config.arm, runtime::TdpaEnd::kFollower, 6, h, correct,
                   config.teleoperation->tdpa.max_follower_damping);
     passive_.emplace(*tdpa_, h, config.teleoperation->tdpa);
   }

@@ -2,13 +2,13 @@
 // the probes an experiment may add (`node.probes`).
 #include "teleop/follower/follower_arms.h"
 #include "teleop/robot/mujoco_backend.h"
-#include "teleop/task/box_task_trace.h"
+#include "teleop/box_task/box_task_trace.h"
 
 int main(int argc, char** argv) {
   teleop::robot::HardwareRegistry hardware;
   teleop::robot::add_mujoco_backend(hardware);
   teleop::robot::SceneProbes probes;
-  teleop::task::add_box_task_probe(probes);
+  teleop::box_task::add_box_task_probe(probes);
   return teleop::runtime::run_node(argc, argv,
                                    {teleop::msg::ROLE_FOLLOWER, "follower",
                                     "teleop follower: the remote robot, tracks the leader's commands",

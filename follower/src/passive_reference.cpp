@@ -6,7 +6,7 @@
 namespace teleop::follower {
 namespace {
 
-control::DriftCompensationConfig drift_config(const teleoperation::TdpaSettings& settings) {
+control::DriftCompensationConfig drift_config(const runtime::TdpaSettings& settings) {
   control::DriftCompensationConfig c;
   c.channels = 6;
   c.time_constant_s = settings.drift_time_constant_s;
@@ -21,8 +21,8 @@ control::DriftCompensationConfig drift_config(const teleoperation::TdpaSettings&
 
 }  // namespace
 
-PassiveReference::PassiveReference(teleoperation::TdpaLink& link, double cycle_s,
-                                   const teleoperation::TdpaSettings& settings)
+PassiveReference::PassiveReference(runtime::TdpaLink& link, double cycle_s,
+                                   const runtime::TdpaSettings& settings)
     : link_(&link), h_(cycle_s), drift_(drift_config(settings)) {}
 
 void PassiveReference::apply(const ValidCommand& command, const control::Vector6& wrench, ValidCommand& corrected) {

@@ -9,7 +9,7 @@
 namespace teleop::leader {
 namespace {
 
-using teleoperation::Architecture;
+using runtime::Architecture;
 
 CartesianGains parse_cartesian(const ConfigNode& s) {
   CartesianGains g;
@@ -99,10 +99,10 @@ LeaderConfig parse_leader_config(const ConfigNode& root) {
   c.ee_site = s.get_string("ee_site", c.ee_site);
   c.workspace_scale = s.get_double("workspace_scale", Range{0.01, 100}, c.workspace_scale);
   parse_feedback(s, c);
-  const auto teleoperation = teleoperation::parse_teleoperation_config(root);
+  const auto teleoperation = runtime::parse_teleoperation_config(root);
   if (!teleoperation) throw root.error("teleoperation", "the leader needs a teleoperation section (architecture)");
   c.teleoperation = *teleoperation;
-  if (teleoperation::is_cartesian(c.teleoperation.architecture) && c.arm_model.empty() && !per_arm_models) {
+  if (runtime::is_cartesian(c.teleoperation.architecture) && c.arm_model.empty() && !per_arm_models) {
     throw s.error("arm_model", std::string("architecture ") + to_string(c.teleoperation.architecture) +
                                    " maps the device in Cartesian space: give the arm's model file");
   }

@@ -9,7 +9,7 @@
 
 namespace teleop::leader {
 
-using teleoperation::Architecture;
+using runtime::Architecture;
 
 LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context)
     : config_(config),
@@ -42,7 +42,7 @@ LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context
     command_kinematics_ = std::make_unique<ArmKinematics>(config.arm_model, config.ee_site);
   }
   const Architecture a = config.teleoperation.architecture;
-  if (teleoperation::is_cartesian(a)) {
+  if (runtime::is_cartesian(a)) {
     cartesian_command_.emplace(context.participant, transport::arm_topic(transport::topics::kLeaderCartesian, config.arm),
                                context.node.name);
     auto& cmd = cartesian_command_->sample();
@@ -50,7 +50,7 @@ LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context
     cmd.arm(transport::arm_label(config.arm));
     cmd.frame("base");
     // PFC reports its energy balance too; only pfc_tdpa corrects it
-    tdpa_.emplace(context.participant, context.node.name, config.arm, teleoperation::TdpaEnd::kLeader, 6, period_s_,
+    tdpa_.emplace(context.participant, context.node.name, config.arm, runtime::TdpaEnd::kLeader, 6, period_s_,
                   a == Architecture::kPfcTdpa, config.teleoperation.tdpa.max_leader_damping);
   } else if (a == Architecture::kPositionPosition) {
     joint_command_.emplace(context.participant, transport::arm_topic(transport::topics::kLeaderCommand, config.arm),

@@ -88,9 +88,9 @@ AnalysisConfig config() {
 }
 
 TEST(BoxTaskAnalysis, ReadsEachColumnIntoItsFieldOfTheSeries) {
-  const task::BoxTaskSeries series = box_task_series(follower_trace());
+  const box_task::BoxTaskSeries series = box_task_series(follower_trace());
   ASSERT_EQ(series.samples.size(), kRows);
-  const task::BoxTaskSample& s = series.samples[150];  // t = 1.5 s, carried
+  const box_task::BoxTaskSample& s = series.samples[150];  // t = 1.5 s, carried
   EXPECT_DOUBLE_EQ(s.t_s, 51.5);
   EXPECT_NEAR(s.box_m.x(), 0.35 + 0.25 * 0.25, 1e-12);
   EXPECT_DOUBLE_EQ(s.left_m.y(), 0.1);
@@ -102,7 +102,7 @@ TEST(BoxTaskAnalysis, ReadsEachColumnIntoItsFieldOfTheSeries) {
 }
 
 TEST(BoxTaskAnalysis, GivesTheTasksMetricsOfATraceThatPlacesTheBox) {
-  const auto m = task::evaluate_box_task(box_task_series(follower_trace()), config().shelf);
+  const auto m = box_task::evaluate_box_task(box_task_series(follower_trace()), config().shelf);
   EXPECT_TRUE(m.success);
   EXPECT_NEAR(m.task_time_s, 3.0, 1e-9) << "placed at 3 s after the first sample";
   EXPECT_NEAR(m.squeeze_variation_n[0], 4.0, 0.05);
@@ -136,7 +136,7 @@ TEST(BoxTaskAnalysis, NamesTheFileAndAMissingArmColumn) {
 
 TEST(BoxTaskAnalysis, TableAndCsvShowTheTasksMetrics) {
   RunRow row{"pfc_tdpa", "wan-35ms", "ok", "", "/tmp/x", analyse_arms(leader_trace(), follower_trace(), config()), {}, {}};
-  row.box_task = task::evaluate_box_task(box_task_series(follower_trace()), config().shelf);
+  row.box_task = box_task::evaluate_box_task(box_task_series(follower_trace()), config().shelf);
   const std::string table = format_table({row}, "box_task", AnalysedTask::kBoxTask);
   EXPECT_NE(table.find("success"), std::string::npos) << table;
   EXPECT_NE(table.find("slip_mm"), std::string::npos) << table;

@@ -18,13 +18,13 @@ class PassiveReferenceTest : public ::testing::Test {
  protected:
   transport::Participant participant{test::test_participant_config("follower")};
   // no leader: the observed energy stays 0, so every outflow at this port is a deficit
-  teleoperation::TdpaLink link{participant, "follower", "", teleoperation::TdpaEnd::kFollower, 6, kCycleS, true, 1e9};
+  runtime::TdpaLink link{participant, "follower", "", runtime::TdpaEnd::kFollower, 6, kCycleS, true, 1e9};
   PassiveReference reference{link, kCycleS, settings()};
   ValidCommand command;
   ValidCommand corrected;
 
-  static teleoperation::TdpaSettings settings() {
-    teleoperation::TdpaSettings s;
+  static runtime::TdpaSettings settings() {
+    runtime::TdpaSettings s;
     s.drift_time_constant_s = 0.5;
     s.drift_max_speed_m_per_s = 0.05;
     s.drift_contact_force_n = 3.0;

@@ -29,14 +29,14 @@ TEST(Soak, EveryKillReachesTheSafeStateAndTheRobotNeverAppliesAStaleCommand) {
   std::istringstream csv(read_file(dir + "/soak_mmt_stiff_wall.csv"));
   std::string line;
   std::getline(csv, line);
-  ASSERT_EQ(line, "node,incarnation,killed_s,restarted_s,first_cycle_s,to_safe_ms,to_resume_ms,interrupted");
+  ASSERT_EQ(line, "node,incarnation,killed_s,restarted_s,first_cycle_s,to_safe_ms,to_resume_ms,interrupted,pending");
   int events = 0;
   while (std::getline(csv, line)) {
     ++events;
     std::vector<std::string> cells;
     std::istringstream row(line);
     for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
-    ASSERT_EQ(cells.size(), 8u) << line;
+    ASSERT_EQ(cells.size(), 9u) << line;
     const double to_safe_ms = std::stod(cells[5]);
     EXPECT_TRUE(std::isfinite(to_safe_ms)) << "every kill is noticed: " << line;
     EXPECT_TRUE(std::isfinite(std::stod(cells[4]))) << "the restarted process ran: " << line;

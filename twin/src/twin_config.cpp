@@ -4,7 +4,7 @@
 
 #include "teleop/common/joint_config.h"
 #include "teleop/runtime/arm_configs.h"
-#include "teleop/teleoperation/architecture.h"
+#include "teleop/runtime/architecture.h"
 
 namespace teleop::twin {
 namespace {
@@ -80,8 +80,8 @@ TwinConfig parse_twin_config(const ConfigNode& root) {
   if (auto lockstep = s.optional_child("lockstep")) c.lockstep = read_lockstep(*lockstep);
   if (auto hil = s.optional_child("hil")) c.hil = read_hil(*hil);
   if (c.mode == TwinMode::kHil && !s.has("hil")) throw s.error("hil", "mode: hil needs a hil section with the goal");
-  const auto teleoperation = teleoperation::parse_teleoperation_config(root);
-  c.mmt.enabled = teleoperation && teleoperation->architecture == teleoperation::Architecture::kMmt;
+  const auto teleoperation = runtime::parse_teleoperation_config(root);
+  c.mmt.enabled = teleoperation && teleoperation->architecture == runtime::Architecture::kMmt;
   if (auto mmt = s.optional_child("mmt")) {
     c.mmt.stiffness_nm_per_rad = mmt->get_double("follower_stiffness_nm_per_rad", Range{0, 1e5}, c.mmt.stiffness_nm_per_rad);
     c.mmt.damping_nms_per_rad = mmt->get_double("follower_damping_nms_per_rad", Range{0, 1e4}, c.mmt.damping_nms_per_rad);

@@ -8,7 +8,7 @@
 
 #include "teleop/experiment/metrics.h"
 #include "teleop/experiment/trace.h"
-#include "teleop/task/box_task_metrics.h"
+#include "teleop/box_task/box_task_metrics.h"
 
 namespace teleop::experiment {
 
@@ -24,7 +24,7 @@ struct AnalysisConfig {
   /// kBoxTask: the arms, whose columns the traces prefix with "<arm>_", and where the box must
   /// end up (the shelf region of the scene named by analysis.scene).
   std::vector<std::string> arms;
-  task::BoxRegion shelf{};
+  box_task::BoxRegion shelf{};
   double settle_s = 1.0;
   /// Stiff wall: the contact held; box task: the carry (MAD, stability).
   Window hold{6.0, 10.0};

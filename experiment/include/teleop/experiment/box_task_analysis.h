@@ -4,13 +4,13 @@
 // signals (MAD, TDPA energy, saturation, safe hold) from its "<arm>_" columns.
 
 #include "teleop/experiment/analysis.h"
-#include "teleop/task/box_task_metrics.h"
+#include "teleop/box_task/box_task_metrics.h"
 
 namespace teleop::experiment {
 
-/// The follower trace's box-task columns (task::kBoxTaskColumns, written with
+/// The follower trace's box-task columns (box_task::kBoxTaskColumns, written with
 /// follower.trace_box_task) as a series. Throws TraceError naming a missing column.
-task::BoxTaskSeries box_task_series(const Trace& follower);
+box_task::BoxTaskSeries box_task_series(const Trace& follower);
 
 /// The stability signals of RunMetrics over all `config.arms`, each the worst arm's: MAD of the
 /// follower's joints in the hold window (mean over the arm's joints), the smallest TDPA energy of

@@ -37,7 +37,7 @@ struct RunRow {
   RunMetrics metrics;
   Verdict verdict;
   /// The box task's own metrics (analysis.task: box_task), when the traces could be analysed.
-  std::optional<task::BoxTaskMetrics> box_task;
+  std::optional<box_task::BoxTaskMetrics> box_task;
 };
 
 struct ExperimentResult {

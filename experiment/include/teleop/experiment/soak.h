@@ -34,6 +34,9 @@ struct SoakConfig {
   double settle_s = 3.0;
   /// After the last restart, how long the soak goes on for the recovery to show [s].
   double end_s = 8.0;
+  /// A resume not seen within this long of the new process's first cycle (DDS discovery over the
+  /// lossy link included) is a failure; one cut short by the soak's end before that is pending.
+  double resume_timeout_s = 30.0;
   /// node -> the nodes that must hold while it is gone and run again once it is back
   std::map<std::string, std::vector<std::string>> watch;
   /// The node whose every cycle is checked for stale commands, torque and reflex violations.
@@ -64,10 +67,13 @@ struct SoakEvent {
   /// never while the watcher lived.
   double to_safe_s = NAN;
   double to_resume_s = NAN;
-  /// A watcher was killed itself before it ran again: the resume was not seen, nor missed.
+  /// Not resumed, and not for want of the system: a watcher was killed itself before it ran
+  /// again (interrupted), or the soak ended sooner than resume_timeout_s after the first cycle
+  /// (pending).
   bool interrupted = false;
-  /// Neither held nor (uninterrupted) resumed: a failure.
-  bool unrecovered() const { return std::isnan(to_safe_s) || (std::isnan(to_resume_s) && !interrupted); }
+  bool pending = false;
+  /// Never held, or not resumed within the timeout: a failure.
+  bool unrecovered() const { return std::isnan(to_safe_s) || (std::isnan(to_resume_s) && !interrupted && !pending); }
 };
 
 struct SoakResult {

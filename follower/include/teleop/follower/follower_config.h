@@ -11,7 +11,7 @@
 #include "teleop/follower/safety_reflex.h"
 #include "teleop/robot/hardware_registry.h"
 #include "teleop/robot/mujoco_backend.h"
-#include "teleop/teleoperation/architecture.h"
+#include "teleop/runtime/architecture.h"
 
 namespace teleop::follower {
 
@@ -54,7 +54,7 @@ struct FollowerConfig {
   /// Objects of the shared scene whose measured pose goes to the twin (object_pose_feed.h).
   ObjectPoseFeedConfig tracked_objects;
   /// The architecture the follower plays its part in (absent: a plain follower of `command_source`).
-  std::optional<teleoperation::TeleoperationConfig> teleoperation;
+  std::optional<runtime::TeleoperationConfig> teleoperation;
 };
 
 /// Reads the `follower:` section, the robot from `hardware`'s backends; throws ConfigError naming

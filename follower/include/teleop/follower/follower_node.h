@@ -76,7 +76,7 @@ class FollowerNode final : public runtime::NodeLogic {
   msg::NodeState state_ = msg::STATE_STARTING;
   ValidCommand active_{};
   // pfc / pfc_tdpa: the follower's end of the TDPA channel and the command it corrects
-  std::optional<teleoperation::TdpaLink> tdpa_;
+  std::optional<runtime::TdpaLink> tdpa_;
   std::optional<PassiveReference> passive_;
   ValidCommand corrected_{};
   const ValidCommand* controlled_ = &active_;

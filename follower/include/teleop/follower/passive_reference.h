@@ -12,14 +12,14 @@
 #include "teleop/control/drift_compensation.h"
 #include "teleop/control/types.h"
 #include "teleop/follower/command_validator.h"
-#include "teleop/teleoperation/architecture.h"
-#include "teleop/teleoperation/tdpa_link.h"
+#include "teleop/runtime/architecture.h"
+#include "teleop/runtime/tdpa_link.h"
 
 namespace teleop::follower {
 
 class PassiveReference {
  public:
-  PassiveReference(teleoperation::TdpaLink& link, double cycle_s, const teleoperation::TdpaSettings& settings);
+  PassiveReference(runtime::TdpaLink& link, double cycle_s, const runtime::TdpaSettings& settings);
 
   /// Corrects `command` (Cartesian, as received) into `corrected` given this cycle's estimated
   /// external wrench (base frame, the one published to the leader); sends this end's energy packet.
@@ -35,7 +35,7 @@ class PassiveReference {
   double rotation_drift_rad() const;
 
  private:
-  teleoperation::TdpaLink* link_;
+  runtime::TdpaLink* link_;
   double h_;
   control::DriftCompensator drift_;
 };

@@ -14,7 +14,7 @@
 #include "teleop/leader/joint_trajectory.h"
 #include "teleop/leader/operator_motion.h"
 #include "teleop/leader/simulated_haptic_arm.h"
-#include "teleop/teleoperation/architecture.h"
+#include "teleop/runtime/architecture.h"
 
 namespace teleop::leader {
 
@@ -56,7 +56,7 @@ struct LeaderConfig {
   FeedbackConfig feedback;
   /// Scaling from the device to the follower's command (joint angles or positions).
   double workspace_scale = 1.0;
-  teleoperation::TeleoperationConfig teleoperation;
+  runtime::TeleoperationConfig teleoperation;
 };
 
 /// The recorded operator motion whose CSV file is `section.key` (joints and column prefix from

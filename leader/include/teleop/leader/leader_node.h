@@ -22,8 +22,8 @@
 #include "teleop/leader/replay_device.h"
 #include "teleop/leader/simulated_haptic_arm.h"
 #include "teleop/runtime/node_runner.h"
-#include "teleop/teleoperation/architecture.h"
-#include "teleop/teleoperation/tdpa_link.h"
+#include "teleop/runtime/architecture.h"
+#include "teleop/runtime/tdpa_link.h"
 #include "teleop/transport/publication.h"
 #include "teleop/transport/subscription.h"
 
@@ -49,7 +49,7 @@ class LeaderNode final : public runtime::NodeLogic {
   const Eigen::Vector3d& felt_force() const { return felt_force_; }
 
  private:
-  teleoperation::Architecture architecture() const { return config_.teleoperation.architecture; }
+  runtime::Architecture architecture() const { return config_.teleoperation.architecture; }
   void poll_peers();
   void update_state(int64_t now_ns);
   void move_device(double t_s);
@@ -70,7 +70,7 @@ class LeaderNode final : public runtime::NodeLogic {
   transport::Subscription<msg::JointState> follower_state_;
   transport::Subscription<msg::WrenchStamped> follower_wrench_;
   transport::Subscription<msg::JointTorque> twin_feedback_;
-  std::optional<teleoperation::TdpaLink> tdpa_;
+  std::optional<runtime::TdpaLink> tdpa_;
   std::unique_ptr<LeaderDevice> device_impl_;  // none: the scripted device
   SimulatedHapticArm* haptic_arm_ = nullptr;     // device_impl_ when it is the haptic arm
   std::unique_ptr<ArmKinematics> device_kinematics_;
