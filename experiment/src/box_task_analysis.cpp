@@ -1,4 +1,4 @@
-#include "teleop/experiment/box_task_analysis.h"
+#include "box_task_analysis.h"
 
 #include <teleop/msg/status.h>
 

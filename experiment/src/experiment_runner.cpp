@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "teleop/common/config.h"
-#include "teleop/experiment/box_task_analysis.h"
+#include "box_task_analysis.h"
 #include "teleop/experiment/results_table.h"
 #include "teleop/launcher/launcher.h"
 #include "teleop/runtime/shutdown_signal.h"

@@ -1,4 +1,4 @@
-#include "teleop/experiment/parameter_sweep.h"
+#include "parameter_sweep.h"
 
 #include <sys/wait.h>
 #include <unistd.h>

@@ -1,4 +1,4 @@
-#include "teleop/experiment/parameter_sweep_config.h"
+#include "parameter_sweep_config.h"
 
 #include <regex>
 

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <iostream>
 
-#include "teleop/experiment/parameter_sweep.h"
+#include "parameter_sweep.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"teleop twin sweep: one scenario over a grid of parameters, in parallel processes",

@@ -1,4 +1,4 @@
-#include "teleop/experiment/press_scenario.h"
+#include "press_scenario.h"
 
 #include <chrono>
 #include <cmath>

@@ -1,9 +1,9 @@
-#include "teleop/follower/follower_arms.h"
+#include "follower_arms.h"
 
 #include <memory>
 
 #include "teleop/follower/follower_node.h"
-#include "teleop/follower/object_pose_feed.h"
+#include "object_pose_feed.h"
 #include "teleop/robot/mujoco_backend.h"
 #include "teleop/robot/mujoco_hardware.h"
 #include "teleop/runtime/arm_group.h"

@@ -1,6 +1,6 @@
 // teleop_follower: the remote robot. Its edge: the robots it can drive (`follower.hardware`) and
 // the probes an experiment may add (`node.probes`).
-#include "teleop/follower/follower_arms.h"
+#include "follower_arms.h"
 #include "teleop/robot/mujoco_backend.h"
 #include "teleop/box_task/box_task_trace.h"
 

@@ -1,4 +1,4 @@
-#include "teleop/follower/object_pose_feed.h"
+#include "object_pose_feed.h"
 
 #include <algorithm>
 #include <cmath>

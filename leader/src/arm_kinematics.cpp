@@ -1,4 +1,4 @@
-#include "teleop/leader/arm_kinematics.h"
+#include "arm_kinematics.h"
 
 #include "teleop/control/estimators.h"
 

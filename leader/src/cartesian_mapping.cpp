@@ -1,4 +1,4 @@
-#include "teleop/leader/cartesian_mapping.h"
+#include "cartesian_mapping.h"
 
 namespace teleop::leader {
 

@@ -1,4 +1,4 @@
-#include "teleop/leader/joint_trajectory.h"
+#include "joint_trajectory.h"
 
 #include <algorithm>
 #include <charconv>

@@ -1,8 +1,8 @@
-#include "teleop/leader/leader_arms.h"
+#include "leader_arms.h"
 
 #include <memory>
 
-#include "teleop/leader/leader_node.h"
+#include "leader_node.h"
 #include "teleop/runtime/arm_configs.h"
 #include "teleop/runtime/arm_group.h"
 

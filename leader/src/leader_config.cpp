@@ -1,4 +1,4 @@
-#include "teleop/leader/leader_config.h"
+#include "leader_config.h"
 
 #include <cmath>
 

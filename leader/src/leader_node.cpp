@@ -1,4 +1,4 @@
-#include "teleop/leader/leader_node.h"
+#include "leader_node.h"
 
 #include <algorithm>
 #include <cmath>

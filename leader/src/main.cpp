@@ -1,5 +1,5 @@
 // teleop_leader: the operator's station.
-#include "teleop/leader/leader_arms.h"
+#include "leader_arms.h"
 
 int main(int argc, char** argv) {
   return teleop::runtime::run_node(argc, argv,

@@ -1,4 +1,4 @@
-#include "teleop/leader/operator_motion.h"
+#include "operator_motion.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "teleop/leader/replay_device.h"
+#include "replay_device.h"
 
 #include <algorithm>
 #include <cmath>

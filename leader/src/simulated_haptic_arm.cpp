@@ -1,4 +1,4 @@
-#include "teleop/leader/simulated_haptic_arm.h"
+#include "simulated_haptic_arm.h"
 
 #include <stdexcept>
 

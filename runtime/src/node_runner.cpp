@@ -14,9 +14,9 @@
 #include "teleop/runtime/realtime.h"
 #include "teleop/runtime/shutdown_signal.h"
 #include "teleop/runtime/status_names.h"
-#include "teleop/runtime/status_publisher.h"
+#include "status_publisher.h"
 #include "teleop/runtime/trace_recorder.h"
-#include "teleop/runtime/trace_stream.h"
+#include "trace_stream.h"
 #include "teleop/transport/participant_config.h"
 
 namespace teleop::runtime {

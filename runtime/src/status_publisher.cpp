@@ -1,4 +1,4 @@
-#include "teleop/runtime/status_publisher.h"
+#include "status_publisher.h"
 
 #include <algorithm>
 #include <cmath>

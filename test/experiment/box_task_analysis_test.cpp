@@ -1,6 +1,6 @@
 // The box task's run metrics on synthetic two-arm traces whose answers are known: the columns
 // land in the right fields, each arm counts, and the table shows the task's metrics.
-#include "teleop/experiment/box_task_analysis.h"
+#include "box_task_analysis.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Parameter sweeps: the grid, its configuration errors, and the press scenario's outcomes.
-#include "teleop/experiment/parameter_sweep.h"
+#include "parameter_sweep.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The follower's measurement of its tracked objects for the twin (follower.tracked_objects): the
 // configuration, the sample's fields, and the feed over DDS from the box task's shared scene.
-#include "teleop/follower/object_pose_feed.h"
+#include "object_pose_feed.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 
 #include "allocation_counter.h"
 #include "node_harness.h"
-#include "teleop/follower/follower_arms.h"
+#include "follower_arms.h"
 #include "teleop/transport/subscription.h"
 #include "teleop/transport/topics.h"
 

@@ -1,4 +1,4 @@
-#include "teleop/leader/clutch.h"
+#include "clutch.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "teleop/leader/feedback_renderer.h"
+#include "feedback_renderer.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "teleop/leader/joint_trajectory.h"
+#include "joint_trajectory.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-#include "teleop/runtime/trace_stream.h"
+#include "trace_stream.h"
 
 #include <gtest/gtest.h>
 

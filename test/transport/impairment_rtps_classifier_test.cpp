@@ -1,4 +1,4 @@
-#include "teleop/transport/impairment/rtps_classifier.h"
+#include "impairment/rtps_classifier.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // verify_security_files against a PKI made by scripts/make_pki.sh (a process: run at test time,
 // nothing secret committed), and against the files broken one at a time.
-#include "teleop/transport/security_files.h"
+#include "security_files.h"
 
 #include <gtest/gtest.h>
 

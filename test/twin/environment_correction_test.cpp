@@ -1,6 +1,6 @@
 // MMT's model update (issue 6): the estimate of where the real surface is, from the follower's
 // measurements, and the rate-limited, bounded offset the twin applies.
-#include "teleop/twin/environment_correction.h"
+#include "environment_correction.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // The twin's side of the lock-step exchange against stand-in controllers on real participants.
-#include "teleop/twin/lockstep_link.h"
+#include "lockstep_link.h"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 #include "node_harness.h"
 #include "report_counter.h"
 #include "teleop/transport/joint_fields.h"
-#include "teleop/twin/twin_node.h"
+#include "twin_node.h"
 #include "twin_node_test_util.h"
 #include "twin_test_util.h"
 

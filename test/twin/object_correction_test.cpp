@@ -1,6 +1,6 @@
 // MMT's object update, pure arithmetic: the pull of the twin's object towards the remote site's
 // measurement (twin/object_correction.h).
-#include "teleop/twin/object_correction.h"
+#include "object_correction.h"
 
 #include <gtest/gtest.h>
 

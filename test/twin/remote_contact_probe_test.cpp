@@ -1,7 +1,7 @@
 // The follower's pose in the twin's model (RemoteContactProbe) and the twin's movable environment:
 // a geom moved at load (model error) or between steps (correction) is where the probe and the
 // simulation see it.
-#include "teleop/twin/remote_contact_probe.h"
+#include "remote_contact_probe.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The two-arm twin (twin.arms): its configuration, and its node over DDS with each arm coupled
 // to its own leader arm on the per-arm topics (T/left, T/right).
-#include "teleop/twin/twin_arms.h"
+#include "twin_arms.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // The twin's configuration: errors name file, key and problem.
-#include "teleop/twin/twin_config.h"
+#include "twin_config.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // The twin node in real-time mode, coupled to a leader over DDS.
-#include "teleop/twin/twin_node.h"
+#include "twin_node.h"
 
 #include <gtest/gtest.h>
 

@@ -18,9 +18,9 @@
 
 #include <spdlog/spdlog.h>
 
-#include "teleop/transport/impairment/impairing_transport.h"
+#include "impairment/impairing_transport.h"
 #include "teleop/transport/qos.h"
-#include "teleop/transport/security_files.h"
+#include "security_files.h"
 
 namespace teleop::transport {
 namespace dds = eprosima::fastdds::dds;

@@ -1,4 +1,4 @@
-#include "teleop/transport/security_files.h"
+#include "security_files.h"
 
 #include <openssl/bio.h>
 #include <openssl/err.h>

@@ -1,4 +1,4 @@
-#include "teleop/twin/coupled_robot.h"
+#include "coupled_robot.h"
 
 #include "teleop/transport/joint_fields.h"
 

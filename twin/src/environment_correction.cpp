@@ -1,4 +1,4 @@
-#include "teleop/twin/environment_correction.h"
+#include "environment_correction.h"
 
 #include <algorithm>
 #include <cmath>

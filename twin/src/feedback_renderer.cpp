@@ -1,4 +1,4 @@
-#include "teleop/twin/feedback_renderer.h"
+#include "feedback_renderer.h"
 
 #include <algorithm>
 #include <cmath>

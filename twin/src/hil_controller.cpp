@@ -1,4 +1,4 @@
-#include "teleop/twin/hil_controller.h"
+#include "hil_controller.h"
 
 #include <algorithm>
 #include <cmath>

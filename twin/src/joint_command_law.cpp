@@ -1,4 +1,4 @@
-#include "teleop/twin/joint_command_law.h"
+#include "joint_command_law.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "teleop/twin/lockstep_controller.h"
+#include "lockstep_controller.h"
 
 #include <chrono>
 #include <cmath>

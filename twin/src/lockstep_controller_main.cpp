@@ -3,7 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "teleop/runtime/shutdown_signal.h"
-#include "teleop/twin/lockstep_controller.h"
+#include "lockstep_controller.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"teleop lock-step controller: answers every twin state with one joint impedance command",

@@ -1,4 +1,4 @@
-#include "teleop/twin/lockstep_link.h"
+#include "lockstep_link.h"
 
 #include <algorithm>
 

@@ -1,5 +1,5 @@
 // teleop_twin: the digital twin.
-#include "teleop/twin/twin_arms.h"
+#include "twin_arms.h"
 
 int main(int argc, char** argv) {
   return teleop::runtime::run_node(argc, argv,

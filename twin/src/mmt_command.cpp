@@ -1,4 +1,4 @@
-#include "teleop/twin/mmt_command.h"
+#include "mmt_command.h"
 
 #include "teleop/transport/joint_fields.h"
 

@@ -1,4 +1,4 @@
-#include "teleop/twin/model_correction.h"
+#include "model_correction.h"
 
 #include <algorithm>
 #include <cmath>

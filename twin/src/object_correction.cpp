@@ -1,4 +1,4 @@
-#include "teleop/twin/object_correction.h"
+#include "object_correction.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>

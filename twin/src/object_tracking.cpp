@@ -1,4 +1,4 @@
-#include "teleop/twin/object_tracking.h"
+#include "object_tracking.h"
 
 #include <algorithm>
 

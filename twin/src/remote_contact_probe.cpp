@@ -1,4 +1,4 @@
-#include "teleop/twin/remote_contact_probe.h"
+#include "remote_contact_probe.h"
 
 #include <stdexcept>
 

@@ -1,11 +1,11 @@
-#include "teleop/twin/twin_arm.h"
+#include "twin_arm.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "teleop/transport/arm_topic.h"
 #include "teleop/transport/joint_fields.h"
-#include "teleop/twin/twin_joint_state.h"
+#include "twin_joint_state.h"
 
 namespace teleop::twin {
 namespace {

@@ -1,4 +1,4 @@
-#include "teleop/twin/twin_arms.h"
+#include "twin_arms.h"
 
 #include <memory>
 #include <stdexcept>
@@ -6,9 +6,9 @@
 #include "teleop/runtime/arm_configs.h"
 #include "teleop/runtime/arm_group.h"
 #include "teleop/sim/actuated_joints.h"
-#include "teleop/twin/twin_arm.h"
-#include "teleop/twin/twin_node.h"
-#include "teleop/twin/twin_scene.h"
+#include "twin_arm.h"
+#include "twin_node.h"
+#include "twin_scene.h"
 
 namespace teleop::twin {
 namespace {

@@ -1,4 +1,4 @@
-#include "teleop/twin/twin_config.h"
+#include "twin_config.h"
 
 #include <cmath>
 

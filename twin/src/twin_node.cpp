@@ -1,4 +1,4 @@
-#include "teleop/twin/twin_node.h"
+#include "twin_node.h"
 
 #include <cmath>
 #include <cstdio>
@@ -6,8 +6,8 @@
 
 #include "teleop/runtime/shutdown_signal.h"
 #include "teleop/transport/joint_fields.h"
-#include "teleop/twin/joint_command_law.h"
-#include "teleop/twin/twin_joint_state.h"
+#include "joint_command_law.h"
+#include "twin_joint_state.h"
 
 namespace teleop::twin {
 namespace {

@@ -1,4 +1,4 @@
-#include "teleop/twin/twin_observations.h"
+#include "twin_observations.h"
 
 #include <algorithm>
 #include <cmath>

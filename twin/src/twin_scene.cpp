@@ -1,4 +1,4 @@
-#include "teleop/twin/twin_scene.h"
+#include "twin_scene.h"
 
 namespace teleop::twin {
 namespace {

@@ -1,4 +1,4 @@
-#include "teleop/box_task/box_plan.h"
+#include "box_plan.h"
 
 #include "teleop/common/config.h"
 #include "teleop/common/joint_config.h"

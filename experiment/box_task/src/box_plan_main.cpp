@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <exception>
 
-#include "teleop/box_task/hand_trajectories.h"
+#include "hand_trajectories.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"teleop_box_plan: joint trajectories of both hands for the two-arm box task"};

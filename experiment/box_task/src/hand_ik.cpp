@@ -1,4 +1,4 @@
-#include "teleop/box_task/hand_ik.h"
+#include "hand_ik.h"
 
 #include <Eigen/Cholesky>
 #include <algorithm>

@@ -1,4 +1,4 @@
-#include "teleop/box_task/hand_trajectories.h"
+#include "hand_trajectories.h"
 
 #include <algorithm>
 #include <cmath>

@@ -12,7 +12,7 @@
 
 #include "teleop/common/config.h"
 #include "teleop/sim/mujoco_model.h"
-#include "teleop/box_task/hand_trajectories.h"
+#include "hand_trajectories.h"
 
 namespace teleop::box_task {
 namespace {

@@ -11,9 +11,9 @@
 #include <string>
 
 #include "teleop/control/controllers.h"
-#include "teleop/leader/joint_trajectory.h"
+#include "joint_trajectory.h"
 #include "teleop/sim/mujoco_model.h"
-#include "teleop/box_task/box_plan.h"
+#include "box_plan.h"
 #include "teleop/box_task/box_task_probe.h"
 
 namespace teleop::box_task {

@@ -21,10 +21,10 @@
 #include "teleop/common/config.h"
 #include "teleop/follower/follower_config.h"
 #include "teleop/hand/hand_config.h"
-#include "teleop/leader/leader_config.h"
+#include "leader_config.h"
 #include "teleop/runtime/node_config.h"
 #include "teleop/transport/participant_config.h"
-#include "teleop/twin/twin_config.h"
+#include "twin_config.h"
 
 namespace {
 

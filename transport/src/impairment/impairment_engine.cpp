@@ -2,7 +2,7 @@
 #include <algorithm>
 
 #include "teleop/common/clock.h"
-#include "teleop/transport/impairment/rtps_classifier.h"
+#include "rtps_classifier.h"
 
 namespace teleop::transport::impairment {
 namespace rtps = eprosima::fastrtps::rtps;

@@ -1,4 +1,4 @@
-#include "teleop/transport/impairment/rtps_classifier.h"
+#include "rtps_classifier.h"
 
 #include <cstring>
 

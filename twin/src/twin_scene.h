@@ -10,9 +10,9 @@
 #include <optional>
 
 #include "teleop/runtime/node_runner.h"
-#include "teleop/twin/object_tracking.h"
+#include "object_tracking.h"
 #include "teleop/twin/twin_model_config.h"
-#include "teleop/twin/twin_observations.h"
+#include "twin_observations.h"
 #include "teleop/twin/twin_simulation.h"
 
 namespace teleop::twin {

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "teleop/box_task/box_plan.h"
-#include "teleop/box_task/hand_ik.h"
+#include "box_plan.h"
+#include "hand_ik.h"
 
 namespace teleop::box_task {
 

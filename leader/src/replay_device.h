@@ -6,8 +6,8 @@
 
 #include <cstdint>
 
-#include "teleop/leader/joint_trajectory.h"
-#include "teleop/leader/leader_device.h"
+#include "joint_trajectory.h"
+#include "leader_device.h"
 
 namespace teleop::leader {
 

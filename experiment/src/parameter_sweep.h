@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "teleop/experiment/press_scenario.h"
-#include "teleop/experiment/parameter_sweep_config.h"
+#include "press_scenario.h"
+#include "parameter_sweep_config.h"
 
 namespace teleop::experiment {
 

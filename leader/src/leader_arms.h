@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "teleop/common/config.h"
-#include "teleop/leader/leader_config.h"
+#include "leader_config.h"
 #include "teleop/runtime/node_runner.h"
 
 namespace teleop::leader {

@@ -14,11 +14,11 @@
 #include "teleop/common/error_stats.h"
 #include "teleop/runtime/node_runner.h"
 #include "teleop/transport/publication.h"
-#include "teleop/twin/coupled_robot.h"
-#include "teleop/twin/feedback_renderer.h"
-#include "teleop/twin/mmt_command.h"
-#include "teleop/twin/twin_config.h"
-#include "teleop/twin/twin_scene.h"
+#include "coupled_robot.h"
+#include "feedback_renderer.h"
+#include "mmt_command.h"
+#include "twin_config.h"
+#include "twin_scene.h"
 
 namespace teleop::twin {
 

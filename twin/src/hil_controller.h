@@ -5,7 +5,7 @@
 
 #include <teleop/msg/arm.h>
 
-#include "teleop/twin/twin_config.h"
+#include "twin_config.h"
 
 namespace teleop::twin {
 

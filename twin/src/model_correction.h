@@ -13,8 +13,8 @@
 #include "teleop/runtime/node_report.h"
 #include "teleop/transport/participant.h"
 #include "teleop/transport/subscription.h"
-#include "teleop/twin/environment_correction.h"
-#include "teleop/twin/remote_contact_probe.h"
+#include "environment_correction.h"
+#include "remote_contact_probe.h"
 #include "teleop/twin/twin_simulation.h"
 
 namespace teleop::twin {

@@ -10,10 +10,10 @@
 
 #include "teleop/common/config.h"
 #include "teleop/common/joint_model.h"
-#include "teleop/leader/feedback_renderer.h"
-#include "teleop/leader/joint_trajectory.h"
-#include "teleop/leader/operator_motion.h"
-#include "teleop/leader/simulated_haptic_arm.h"
+#include "feedback_renderer.h"
+#include "joint_trajectory.h"
+#include "operator_motion.h"
+#include "simulated_haptic_arm.h"
 #include "teleop/runtime/architecture.h"
 
 namespace teleop::leader {

@@ -14,7 +14,7 @@
 #include "teleop/sim/mujoco_model.h"
 #include "teleop/transport/participant.h"
 #include "teleop/transport/subscription.h"
-#include "teleop/twin/object_correction.h"
+#include "object_correction.h"
 
 namespace teleop::twin {
 

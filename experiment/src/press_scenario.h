@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "teleop/experiment/parameter_sweep_config.h"
+#include "parameter_sweep_config.h"
 
 namespace teleop::experiment {
 

@@ -7,8 +7,8 @@
 
 #include "teleop/common/config.h"
 #include "teleop/common/joint_model.h"
-#include "teleop/twin/environment_correction.h"
-#include "teleop/twin/object_correction.h"
+#include "environment_correction.h"
+#include "object_correction.h"
 #include "teleop/twin/twin_model_config.h"
 
 namespace teleop::twin {

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "teleop/common/joint_model.h"
-#include "teleop/leader/joint_trajectory.h"
+#include "joint_trajectory.h"
 
 namespace teleop::leader {
 

@@ -9,7 +9,7 @@
 
 #include "teleop/common/config.h"
 #include "teleop/runtime/node_runner.h"
-#include "teleop/twin/twin_config.h"
+#include "twin_config.h"
 
 namespace teleop::twin {
 

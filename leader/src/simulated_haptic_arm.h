@@ -8,7 +8,7 @@
 #include <memory>
 
 #include "teleop/robot/mujoco_hardware.h"
-#include "teleop/leader/leader_device.h"
+#include "leader_device.h"
 
 namespace teleop::leader {
 
