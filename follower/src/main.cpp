@@ -1,16 +1,13 @@
 // teleop_follower: the remote robot. Its edge: the robots it can drive (`follower.hardware`) and
-// the probes an experiment may add (`node.probes`).
+// the probes an experiment may add (`node.probes`: those of the libraries linked in, CMakeLists.txt).
 #include "follower_arms.h"
 #include "teleop/robot/mujoco_backend.h"
-#include "teleop/box_task/box_task_trace.h"
 
 int main(int argc, char** argv) {
   teleop::robot::HardwareRegistry hardware;
   teleop::robot::add_mujoco_backend(hardware);
-  teleop::robot::SceneProbes probes;
-  teleop::box_task::add_box_task_probe(probes);
   return teleop::runtime::run_node(argc, argv,
                                    {teleop::msg::ROLE_FOLLOWER, "follower",
                                     "teleop follower: the remote robot, tracks the leader's commands",
-                                    teleop::follower::follower_logic_parser(hardware, probes)});
+                                    teleop::follower::follower_logic_parser(hardware, teleop::robot::linked_probes())});
 }

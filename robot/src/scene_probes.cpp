@@ -30,4 +30,9 @@ std::string SceneProbes::names() const {
   return out.empty() ? "none" : out;
 }
 
+SceneProbes& linked_probes() {
+  static SceneProbes probes;
+  return probes;
+}
+
 }  // namespace teleop::robot

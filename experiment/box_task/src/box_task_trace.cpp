@@ -21,6 +21,16 @@ void BoxTaskTrace::trace_row(double* row) const {
   *row = s.arm_collision_n;
 }
 
+namespace {
+
+// linked into an executable, the probe is there to be asked for (robot/scene_probes.h)
+const bool kRegistered = [] {
+  add_box_task_probe(robot::linked_probes());
+  return true;
+}();
+
+}  // namespace
+
 void add_box_task_probe(robot::SceneProbes& probes) {
   probes.add("box_task", [](std::shared_ptr<const robot::MujocoScene> scene) -> std::unique_ptr<runtime::NodeLogic> {
     return std::make_unique<BoxTaskTrace>(std::move(scene));

@@ -1,9 +1,10 @@
 #pragma once
 // Probes: observers of a simulated world that a node runs once per control cycle after the world
 // stepped, beside its arms: an experiment's (the box task's records the box, the hands and the
-// squeeze into the node's trace). The executable registers the probes it was built with, by name;
-// a node's configuration asks for them (`node.probes: [box_task]`, set by the experiment, never
-// a key of the robot's own section). Setup time only.
+// squeeze into the node's trace). A probe library registers its probes by name in linked_probes()
+// when it is linked into an executable (teleop_follower links the box task's whole, in CMake: the
+// node's code names no probe); a node's configuration asks for them (`node.probes: [box_task]`,
+// set by the experiment, never a key of the robot's own section). Setup time only.
 
 #include <functional>
 #include <memory>
@@ -30,5 +31,8 @@ class SceneProbes {
  private:
   std::vector<std::pair<std::string, Factory>> factories_;
 };
+
+/// The probes of the libraries linked into this executable.
+SceneProbes& linked_probes();
 
 }  // namespace teleop::robot
