@@ -45,7 +45,7 @@ class StateRecorder {
     std::array<double, 7> q;
     std::array<double, 7> tau;
   };
-  explicit StateRecorder(int domain) : participant_(config(domain)), sub_(participant_, transport::topics::kFollowerState) {
+  explicit StateRecorder(int domain) : participant_(bus_participant(domain, "recorder")), sub_(participant_, transport::topics::kFollowerState) {
     thread_ = std::thread([this] {
       while (!stop_) {
         while (sub_.poll() > 0) {
@@ -65,14 +65,6 @@ class StateRecorder {
   }
 
  private:
-  static transport::ParticipantConfig config(int domain) {
-    transport::ParticipantConfig c;
-    c.domain_id = domain;
-    c.name = "recorder";
-    c.udpv4 = true;
-    c.shm = false;
-    return c;
-  }
   void record() {
     if (!sub_.has_sample() || sub_.latest().header().seq() == last_seq_) return;
     const auto& s = sub_.latest();

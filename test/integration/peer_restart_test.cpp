@@ -40,15 +40,6 @@ struct Site {
   }
 };
 
-transport::ParticipantConfig observer_config(int domain) {
-  transport::ParticipantConfig c;
-  c.domain_id = domain;
-  c.name = "observer";
-  c.udpv4 = true;
-  c.shm = false;
-  return c;
-}
-
 // Watches one stream on the bus and tells when a new writer of it has been heard.
 template <typename T>
 class StreamWatch {
@@ -106,7 +97,7 @@ void expect_each_session_resumed(const std::vector<Rejoin>& seen, int sessions, 
 
 TEST(PeerRestart, TheFollowerFollowsEachRestartedLeaderFromItsFirstCommandAndAppliesNoStaleOne) {
   Site site;
-  transport::Participant observer(observer_config(site.domain));
+  transport::Participant observer(bus_participant(site.domain, "observer"));
   StreamWatch<msg::JointCommand> commands(observer, transport::topics::kLeaderCommand);
   RunningProcess follower(site.args("follower", source("config/nodes/follower.yaml"), "follower"));
   ASSERT_TRUE(follower.wait_for_output("starting", 20s)) << follower.output();
@@ -147,7 +138,7 @@ TEST(PeerRestart, TheFollowerFollowsEachRestartedLeaderFromItsFirstCommandAndApp
 
 TEST(PeerRestart, TheLeaderFollowsEachRestartedFollowerFromItsFirstState) {
   Site site;
-  transport::Participant observer(observer_config(site.domain));
+  transport::Participant observer(bus_participant(site.domain, "observer"));
   StreamWatch<msg::JointState> states(observer, transport::topics::kFollowerState);
   RunningProcess leader(site.args("leader", site.leader_clear_of_the_wall(), "leader"));
   ASSERT_TRUE(leader.wait_for_output("starting", 20s)) << leader.output();
@@ -169,7 +160,7 @@ TEST(PeerRestart, TheLeaderFollowsEachRestartedFollowerFromItsFirstState) {
 
 TEST(PeerRestart, AForgedMaximalSequenceNumberChangesNothingForTheLeaderFollowed) {
   Site site;
-  transport::Participant observer(observer_config(site.domain));
+  transport::Participant observer(bus_participant(site.domain, "observer"));
   StreamWatch<msg::JointCommand> commands(observer, transport::topics::kLeaderCommand);
   RunningProcess follower(site.args("follower", source("config/nodes/follower.yaml"), "follower"));
   RunningProcess leader(site.args("leader", site.leader_clear_of_the_wall(), "leader"));

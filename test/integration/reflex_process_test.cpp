@@ -30,15 +30,6 @@ constexpr std::array<double, 7> kIntoTheWall{0.0, 0.25, 0.0, 0.25, 0.0, 0.0, 0.0
 // follower.yaml's reflex: 150 N per axis at the flange
 constexpr double kForceThresholdN = 150.0;
 
-transport::ParticipantConfig operator_config(int domain) {
-  transport::ParticipantConfig c;
-  c.domain_id = domain;
-  c.name = "operator";
-  c.udpv4 = true;
-  c.shm = false;
-  return c;
-}
-
 // A stand-in leader: commands a slow reach from home into the wall, at 1 kHz, with the gains it
 // is given, and asks the follower to reset.
 class PressingOperator {
@@ -49,7 +40,7 @@ class PressingOperator {
   };
 
   explicit PressingOperator(int domain)
-      : participant_(operator_config(domain)),
+      : participant_(bus_participant(domain, "operator")),
         command_(participant_, transport::topics::kLeaderCommand, "operator"),
         reset_(participant_, transport::topics::kResetRequest, "operator") {
     auto& c = command_.sample();

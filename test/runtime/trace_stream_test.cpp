@@ -21,16 +21,16 @@ std::vector<std::string> lines_of(const std::string& path) {
   return lines;
 }
 
-// the loop's side: `rows` rows, row i holding (i, 2i), a pause every 10 rows (a trace is written
-// while this runs)
-void record(TraceRecorder& trace, int rows) {
+// the loop's side: `rows` rows, row i holding (i, 2i) at i us, a pause of `pause` every 10 rows
+// (a trace is written while this runs); `finish`: the last row is complete too
+void record(TraceRecorder& trace, int rows, std::chrono::microseconds pause, bool finish = true) {
   for (int i = 0; i < rows; ++i) {
     double* row = trace.begin_row(int64_t{i} * 1000);
     row[0] = i;
     row[1] = 2.0 * i;
-    if (i % 10 == 0) std::this_thread::sleep_for(std::chrono::microseconds(500));
+    if (i % 10 == 0 && pause.count() > 0) std::this_thread::sleep_for(pause);
   }
-  trace.finish();
+  if (finish) trace.finish();
 }
 
 TEST(TraceStream, WritesEveryRowInOrderWhileTheLoopRecords) {
@@ -38,7 +38,7 @@ TEST(TraceStream, WritesEveryRowInOrderWhileTheLoopRecords) {
   // a ring of 8192 rows, written every millisecond: the writer never falls half a ring behind
   TraceRecorder trace({"i", "twice"}, 8192);
   TraceStream stream(trace, dir.path("t.csv"), 1'000'000);
-  record(trace, 3000);
+  record(trace, 3000, std::chrono::microseconds(500));
   stream.stop();
   EXPECT_EQ(stream.rows_written(), 3000u);
   EXPECT_EQ(stream.rows_lost(), 0u);
@@ -54,11 +54,7 @@ TEST(TraceStream, LeavesTheRowsSoFarInTheFileBeforeTheEnd) {
   test::TempDir dir("trace_stream");
   TraceRecorder trace({"i", "twice"}, 4096);
   TraceStream stream(trace, dir.path("t.csv"), 1'000'000);
-  for (int i = 0; i < 500; ++i) {
-    double* row = trace.begin_row(int64_t{i} * 1000);
-    row[0] = i;
-    row[1] = 2.0 * i;
-  }
+  record(trace, 500, std::chrono::microseconds(0), false);
   for (int i = 0; i < 5000 && stream.rows_written() < 499; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   ASSERT_EQ(stream.rows_written(), 499u);
   const auto lines = lines_of(dir.path("t.csv"));
@@ -75,12 +71,7 @@ TEST(TraceStream, CountsTheRowsTheRingOverwroteBeforeTheWriterCame) {
   TraceRecorder trace({"i", "twice"}, 8);
   // a writer far slower than the ring: it sleeps through the recording, stop() drains
   TraceStream stream(trace, dir.path("t.csv"), 200'000'000);
-  for (int i = 0; i < 1000; ++i) {
-    double* row = trace.begin_row(int64_t{i} * 1000);
-    row[0] = i;
-    row[1] = 2.0 * i;
-  }
-  trace.finish();
+  record(trace, 1000, std::chrono::microseconds(0));
   stream.stop();
   EXPECT_EQ(stream.rows_written() + stream.rows_lost(), 1000u);
   EXPECT_GT(stream.rows_lost(), 0u);

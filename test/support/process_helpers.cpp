@@ -21,6 +21,15 @@ int unique_domain() {
   return 100 + static_cast<int>(getpid() % 100);
 }
 
+transport::ParticipantConfig bus_participant(int domain, const std::string& name) {
+  transport::ParticipantConfig c;
+  c.domain_id = domain;
+  c.name = name;
+  c.udpv4 = true;
+  c.shm = false;
+  return c;
+}
+
 std::string make_temp_dir() {
   std::string pattern = (fs::temp_directory_path() / "teleop-test-XXXXXX").string();
   if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");

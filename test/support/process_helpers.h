@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "teleop/launcher/child_process.h"
+#include "teleop/transport/participant_config.h"
 
 namespace teleop::test {
 
@@ -17,6 +18,10 @@ std::string source(const std::string& relative);
 
 /// A DDS domain id no other concurrently running test process uses.
 int unique_domain();
+
+/// A participant of the test itself on the nodes' `domain` (UDP, no shared memory: it sees the
+/// bus as the nodes see each other), named `name`.
+transport::ParticipantConfig bus_participant(int domain, const std::string& name);
 
 /// A fresh, empty directory for this test.
 std::string make_temp_dir();
