@@ -97,27 +97,20 @@ void FollowerNode::take_commands(int64_t now_ns) {
   const int64_t now_system_ns = system_now_ns();
   // a command replaces the active one only when valid; joint and Cartesian commands may both
   // arrive (a mode change), the Cartesian one is taken last
-  if (joint_commands_.poll() > 0) {
-    const uint64_t session = joint_commands_.session().session();
-    if (validator_.validate(joint_commands_.latest(), now_system_ns, active_, session) != CommandVerdict::kRejected) {
-      source_ = Source::kJoint;
-      liveliness_lost_at_command_ = joint_commands_.reader().liveliness_lost();
-      on_valid_command(session, joint_session_, joint_commands_.latest().header().seq(), now_ns);
-    }
-  }
-  if (cartesian_commands_.poll() > 0) {
-    const uint64_t session = cartesian_commands_.session().session();
-    if (validator_.validate(cartesian_commands_.latest(), now_system_ns, active_, session) != CommandVerdict::kRejected) {
-      source_ = Source::kCartesian;
-      liveliness_lost_at_command_ = cartesian_commands_.reader().liveliness_lost();
-      on_valid_command(session, cartesian_session_, cartesian_commands_.latest().header().seq(), now_ns);
-    }
-  }
+  take(joint_commands_, Source::kJoint, joint_session_, now_system_ns, now_ns);
+  take(cartesian_commands_, Source::kCartesian, cartesian_session_, now_system_ns, now_ns);
 }
 
-void FollowerNode::on_valid_command(uint64_t session, uint64_t& last_session, uint64_t seq, int64_t now_ns) {
+template <typename Command>
+void FollowerNode::take(transport::Subscription<Command>& commands, Source source, uint64_t& last_session,
+                        int64_t now_system_ns, int64_t now_ns) {
+  if (commands.poll() == 0) return;
+  const uint64_t session = commands.session().session();
+  if (validator_.validate(commands.latest(), now_system_ns, active_, session) == CommandVerdict::kRejected) return;
+  source_ = source;
+  liveliness_lost_at_command_ = commands.reader().liveliness_lost();
   last_valid_command_ns_ = now_ns;
-  command_seq_ = seq;
+  command_seq_ = commands.latest().header().seq();
   if (session == last_session) return;
   last_session = session;
   ++command_sessions_;

@@ -47,8 +47,12 @@ class FollowerNode final : public runtime::NodeLogic {
 
  private:
   void take_commands(int64_t now_ns);
-  /// Counts a valid command from `session` of its stream; a new session clears the reflex.
-  void on_valid_command(uint64_t session, uint64_t& last_session, uint64_t seq, int64_t now_ns);
+  enum class Source { kNone, kJoint, kCartesian };
+  /// Takes the newest command of one stream when valid; the first of a new session (a new
+  /// sender) clears the reflex.
+  template <typename Command>
+  void take(transport::Subscription<Command>& commands, Source source, uint64_t& last_session, int64_t now_system_ns,
+            int64_t now_ns);
   void take_reset_requests();
   void run_watchdog(int64_t now_ns);
   void run_reflex();
@@ -91,7 +95,7 @@ class FollowerNode final : public runtime::NodeLogic {
   uint64_t command_seq_ = 0;  // of the last valid command
   uint64_t resets_ = 0;
   // which source gave the last valid command, and its liveliness losses then
-  enum class Source { kNone, kJoint, kCartesian } source_ = Source::kNone;
+  Source source_ = Source::kNone;
   uint64_t liveliness_lost_at_command_ = 0;
   int64_t last_valid_command_ns_ = 0;
   JointVector total_nm_{};
