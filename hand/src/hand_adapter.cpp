@@ -1,4 +1,4 @@
-#include "teleop/can/hand_adapter.h"
+#include "teleop/hand/hand_adapter.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,11 +8,44 @@
 #include <stdexcept>
 
 #include "teleop/can/cia402.h"
-#include "teleop/can/hand_drive_objects.h"
+#include "teleop/hand/hand_drive_objects.h"
 
-namespace teleop::can {
+namespace teleop::hand {
 
-namespace od = cia402::od;
+namespace cia402 = can::cia402;
+namespace emcy = can::emcy;
+namespace od = can::cia402::od;
+namespace sdo_abort = can::sdo_abort;
+using can::CanBus;
+using can::CanBusState;
+using can::CanError;
+using can::CanFrame;
+using can::CanStatus;
+using can::classify;
+using can::decode_emcy;
+using can::decode_heartbeat;
+using can::decode_pdo;
+using can::decode_sdo_response;
+using can::encode_nmt;
+using can::encode_pdo;
+using can::encode_sdo_download_request;
+using can::encode_sync;
+using can::kBusLoadWarnFraction;
+using can::kDummy32;
+using can::kMaxNodeId;
+using can::NmtCommand;
+using can::NmtState;
+using can::NodeId;
+using can::PdoMapEntry;
+using can::PdoMapping;
+using can::Result;
+using can::rpdo_cob_id;
+using can::SdoType;
+using can::Service;
+using can::ServiceId;
+using can::sign_extend;
+using can::tpdo_cob_id;
+using can::valid_node;
 
 namespace {
 
@@ -700,4 +733,4 @@ void HandAdapter::send_cyclic() {
   }
 }
 
-}  // namespace teleop::can
+}  // namespace teleop::hand

@@ -1,11 +1,14 @@
-#include "teleop/can/motor_channel.h"
+#include "teleop/hand/motor_channel.h"
 
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
-namespace teleop::can {
+namespace teleop::hand {
+
+using can::CanError;
+using can::Result;
 namespace {
 
 bool positive_finite(double v) { return std::isfinite(v) && v > 0; }
@@ -63,4 +66,4 @@ Result<uint16_t> MotorChannel::amps_to_max_current_permille(double amps) const {
   return static_cast<uint16_t>(permille);
 }
 
-}  // namespace teleop::can
+}  // namespace teleop::hand

@@ -1,4 +1,4 @@
-#include "teleop/can/fault_schedule.h"
+#include "teleop/hand/fault_schedule.h"
 
 #include <linux/can/error.h>
 
@@ -6,7 +6,14 @@
 #include <stdexcept>
 #include <vector>
 
-namespace teleop::can {
+namespace teleop::hand {
+
+using can::CanBus;
+using can::CanFrame;
+using can::CanStatus;
+using can::kMaxNodeId;
+using can::NodeId;
+using can::valid_node;
 
 namespace {
 
@@ -135,4 +142,4 @@ CanStatus apply_fault(const ScheduledFault& fault, EmulatedDrive& drive, CanBus&
   return CanStatus::kOk;
 }
 
-}  // namespace teleop::can
+}  // namespace teleop::hand

@@ -1,5 +1,5 @@
 // The SVH motor -> joint coupling q = S_m m + q0.
-#include "teleop/can/hand_coupling.h"
+#include "teleop/hand/hand_coupling.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 
 #include "allocation_counter.h"
 
-namespace teleop::can {
+namespace teleop::hand {
 namespace {
 
 size_t joint(std::string_view name) {
@@ -135,4 +135,4 @@ TEST(HandCoupling, MappingDoesNotAllocate) {
 }
 
 }  // namespace
-}  // namespace teleop::can
+}  // namespace teleop::hand

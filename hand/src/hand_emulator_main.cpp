@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "teleop/can/emulated_drive.h"
-#include "teleop/can/fault_schedule.h"
 #include "teleop/can/socketcan_bus.h"
+#include "teleop/hand/emulated_drive.h"
+#include "teleop/hand/fault_schedule.h"
 
 namespace {
 
@@ -57,10 +57,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "teleop_hand_emulator: --nodes %s: need FIRST-LAST within 1-127\n", nodes.c_str());
     return 2;
   }
-  std::vector<teleop::can::ScheduledFault> faults;
+  std::vector<teleop::hand::ScheduledFault> faults;
   try {
     for (const std::string& spec : inject) {
-      faults.push_back(teleop::can::parse_fault_spec(spec));
+      faults.push_back(teleop::hand::parse_fault_spec(spec));
       if (faults.back().node < first || faults.back().node > last) {
         throw std::invalid_argument("fault '" + spec + "': node is not emulated here");
       }
@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
   std::sort(faults.begin(), faults.end(), [](const auto& a, const auto& b) { return a.at_s < b.at_s; });
 
   std::vector<std::unique_ptr<teleop::can::SocketCanBus>> buses;
-  std::vector<std::unique_ptr<teleop::can::EmulatedDrive>> drives;
+  std::vector<std::unique_ptr<teleop::hand::EmulatedDrive>> drives;
   try {
     for (int node = first; node <= last; ++node) {
       teleop::can::SocketCanOptions options;
@@ -81,10 +81,10 @@ int main(int argc, char** argv) {
       // of another node (dummy mapping, docs/can_bus_budget.md)
       options.filters.push_back({teleop::can::cob::kRpdo2, 0x780, false});
       buses.push_back(std::make_unique<teleop::can::SocketCanBus>(interface, options));
-      teleop::can::EmulatedDriveConfig config;
+      teleop::hand::EmulatedDriveConfig config;
       config.node_id = static_cast<teleop::can::NodeId>(node);
       config.serial = static_cast<uint32_t>(node);
-      drives.push_back(std::make_unique<teleop::can::EmulatedDrive>(*buses.back(), config));
+      drives.push_back(std::make_unique<teleop::hand::EmulatedDrive>(*buses.back(), config));
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "teleop_hand_emulator: %s\n", e.what());
@@ -108,11 +108,11 @@ int main(int argc, char** argv) {
     const double dt = static_cast<double>(std::min<int64_t>(t - last_step, 50 * period_ns)) * 1e-9;
     last_step = t;
     while (next_fault < faults.size() && t - start >= static_cast<int64_t>(faults[next_fault].at_s * 1e9)) {
-      const teleop::can::ScheduledFault& f = faults[next_fault++];
+      const teleop::hand::ScheduledFault& f = faults[next_fault++];
       const size_t i = f.node - static_cast<size_t>(first);
-      const auto status = teleop::can::apply_fault(f, *drives[i], *buses[i]);
+      const auto status = teleop::hand::apply_fault(f, *drives[i], *buses[i]);
       std::fprintf(stderr, "teleop_hand_emulator: t=%.3f s: injected %s into node %u: %s\n",
-                   static_cast<double>(t - start) * 1e-9, teleop::can::to_string(f.kind), unsigned{f.node},
+                   static_cast<double>(t - start) * 1e-9, teleop::hand::to_string(f.kind), unsigned{f.node},
                    teleop::can::to_string(status));
     }
     for (auto& d : drives) d->step(dt);

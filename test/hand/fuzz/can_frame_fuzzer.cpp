@@ -11,12 +11,13 @@
 #include "teleop/can/can_frame.h"
 #include "teleop/can/cia301.h"
 #include "teleop/can/cia402.h"
-#include "teleop/can/emulated_drive.h"
-#include "teleop/can/hand_adapter.h"
+#include "teleop/hand/emulated_drive.h"
+#include "teleop/hand/hand_adapter.h"
 
 namespace {
 
 using namespace teleop::can;
+using namespace teleop::hand;
 
 #define FUZZ_CHECK(condition) \
   do {                        \

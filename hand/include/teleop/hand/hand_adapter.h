@@ -34,13 +34,13 @@
 #include <string>
 #include <vector>
 
-#include "teleop/can/bus_load.h"
 #include "teleop/can/can_bus.h"
 #include "teleop/can/cia301.h"
-#include "teleop/can/hand_coupling.h"
-#include "teleop/can/motor_channel.h"
+#include "teleop/hand/hand_bus_budget.h"
+#include "teleop/hand/hand_coupling.h"
+#include "teleop/hand/motor_channel.h"
 
-namespace teleop::can {
+namespace teleop::hand {
 
 /// Per-motor fault bits; the values of HAND_FAULT_* in idl/hand.idl.
 namespace hand_fault {
@@ -80,7 +80,7 @@ struct HandHomingConfig {
 
 struct HandAdapterConfig {
   /// CANopen node id of each motor (SVH channel order).
-  std::array<NodeId, kHandMotors> node_ids{1, 2, 3, 4, 5, 6, 7, 8, 9};
+  std::array<can::NodeId, kHandMotors> node_ids{1, 2, 3, 4, 5, 6, 7, 8, 9};
   /// Tick/radian conversion per motor (defaults match the emulated drive: 4096 ticks, 1:100).
   std::array<MotorChannelConfig, kHandMotors> channels = default_channels();
   /// Software limits of each motor [rad]: commands are clamped to them, 0x607D is set from them.
@@ -155,7 +155,7 @@ class HandAdapter {
  public:
   /// Throws std::invalid_argument for an invalid configuration (duplicate or invalid node ids,
   /// limits, rates, timeouts, gains).
-  HandAdapter(CanBus& bus, const HandAdapterConfig& config);
+  HandAdapter(can::CanBus& bus, const HandAdapterConfig& config);
 
   /// Sets the targets (clamped to the limits and counted; NaN/Inf rejected and counted).
   void set_command(const HandTargets& targets);
@@ -189,7 +189,7 @@ class HandAdapter {
   struct Drive {
     explicit Drive(const MotorChannelConfig& c) : channel(c) {}
     MotorChannel channel;
-    NodeId node = 0;
+    can::NodeId node = 0;
     // NMT and heartbeat consumer
     bool seen = false;
     int64_t last_heartbeat_ns = 0;
@@ -221,9 +221,9 @@ class HandAdapter {
   void queue_sdo(Drive& d, uint16_t index, uint8_t subindex, uint32_t value, uint8_t size);
   // receive
   void receive_all(int64_t now_ns);
-  void handle_frame(const CanFrame& frame, int64_t now_ns);
-  void handle_tpdo(Drive& d, size_t motor, const CanFrame& frame);
-  void handle_sdo_response(Drive& d, size_t motor, const CanFrame& frame);
+  void handle_frame(const can::CanFrame& frame, int64_t now_ns);
+  void handle_tpdo(Drive& d, size_t motor, const can::CanFrame& frame);
+  void handle_sdo_response(Drive& d, size_t motor, const can::CanFrame& frame);
   // phases
   void boot(int64_t now_ns);
   void configure(int64_t now_ns);
@@ -237,17 +237,17 @@ class HandAdapter {
   void enter_safe_hold(int64_t now_ns);
   void fail(const char* format, ...) __attribute__((format(printf, 2, 3)));
   // send
-  void send(const Result<CanFrame>& frame);
+  void send(const can::Result<can::CanFrame>& frame);
   void send_cyclic();
   void update_feedback_faults();
   void hold_actual_positions();
 
-  CanBus& bus_;
+  can::CanBus& bus_;
   HandAdapterConfig config_;
   HandCoupling coupling_;
   HandBusBudget budget_;
   std::vector<Drive> drives_;  // sized at construction, never resized
-  std::array<int8_t, kMaxNodeId + 1> motor_of_node_{};
+  std::array<int8_t, can::kMaxNodeId + 1> motor_of_node_{};
   HandPhase phase_ = HandPhase::kBooting;
   bool started_ = false;
   bool boot_sent_ = false;
@@ -268,4 +268,4 @@ std::optional<std::string> bus_load_warning(const HandAdapterConfig& config);
 /// The HandBusPlan of a configuration (rate, bitrate, heartbeat).
 HandBusPlan hand_bus_plan(const HandAdapterConfig& config);
 
-}  // namespace teleop::can
+}  // namespace teleop::hand

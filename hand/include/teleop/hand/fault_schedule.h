@@ -18,9 +18,9 @@
 
 #include "teleop/can/can_bus.h"
 #include "teleop/can/cia301.h"
-#include "teleop/can/emulated_drive.h"
+#include "teleop/hand/emulated_drive.h"
 
-namespace teleop::can {
+namespace teleop::hand {
 
 enum class FaultKind : uint8_t {
   kHeartbeatStop,
@@ -43,7 +43,7 @@ const char* to_string(FaultKind kind);
 
 struct ScheduledFault {
   double at_s = 0.0;
-  NodeId node = 1;
+  can::NodeId node = 1;
   FaultKind kind = FaultKind::kHeartbeatStop;
   uint32_t value = 0;  // EMCY code, or a PDO count (EmulatedDrive::kDropForever)
 };
@@ -52,6 +52,6 @@ struct ScheduledFault {
 ScheduledFault parse_fault_spec(const std::string& spec);
 
 /// Does it: on the drive, or for bus-off / restarted an error frame sent on `bus`.
-CanStatus apply_fault(const ScheduledFault& fault, EmulatedDrive& drive, CanBus& bus);
+can::CanStatus apply_fault(const ScheduledFault& fault, EmulatedDrive& drive, can::CanBus& bus);
 
-}  // namespace teleop::can
+}  // namespace teleop::hand

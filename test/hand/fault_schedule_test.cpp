@@ -1,5 +1,5 @@
 // Fault specs of the emulator's --inject option: parsing, errors, and what applying them does.
-#include "teleop/can/fault_schedule.h"
+#include "teleop/hand/fault_schedule.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,9 @@
 
 #include "teleop/can/virtual_can_bus.h"
 
-namespace teleop::can {
+namespace teleop::hand {
+
+using namespace can;  // the CANopen core the hand is built on
 namespace {
 
 std::string error_of(const std::string& spec) {
@@ -89,4 +91,4 @@ TEST(FaultSchedule, AppliesToTheDriveOrSendsTheErrorFrame) {
 }
 
 }  // namespace
-}  // namespace teleop::can
+}  // namespace teleop::hand

@@ -1,5 +1,5 @@
 // Tick / radian / ampere conversions of one drive channel.
-#include "teleop/can/motor_channel.h"
+#include "teleop/hand/motor_channel.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,9 @@
 
 #include "allocation_counter.h"
 
-namespace teleop::can {
+namespace teleop::hand {
+
+using namespace can;  // the CANopen core the hand is built on
 namespace {
 
 MotorChannelConfig geared() {
@@ -107,4 +109,4 @@ TEST(MotorChannel, ConversionsDoNotAllocate) {
 }
 
 }  // namespace
-}  // namespace teleop::can
+}  // namespace teleop::hand

@@ -6,11 +6,13 @@
 #include <memory>
 #include <vector>
 
-#include "teleop/can/emulated_drive.h"
-#include "teleop/can/hand_adapter.h"
 #include "teleop/can/virtual_can_bus.h"
+#include "teleop/hand/emulated_drive.h"
+#include "teleop/hand/hand_adapter.h"
 
-namespace teleop::can::test {
+namespace teleop::hand::test {
+
+using namespace can;  // the CANopen core the hand is built on
 
 class HandRig {
  public:
@@ -68,4 +70,4 @@ class HandRig {
   int64_t now_ns_ = 0;
 };
 
-}  // namespace teleop::can::test
+}  // namespace teleop::hand::test

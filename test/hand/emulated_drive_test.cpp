@@ -1,7 +1,7 @@
 // The emulated CiA 402 drive on a VirtualCanBus, driven by a test master: boot-up and
 // heartbeat, NMT, SDO server, 402 walk, CSP tracking, current limit, hard stops, PDO
 // configuration, and every fault injection hook producing the right frames.
-#include "teleop/can/emulated_drive.h"
+#include "teleop/hand/emulated_drive.h"
 
 #include <gtest/gtest.h>
 
@@ -11,9 +11,11 @@
 
 #include "allocation_counter.h"
 #include "drive_rig.h"
-#include "teleop/can/hand_drive_objects.h"
+#include "teleop/hand/hand_drive_objects.h"
 
-namespace teleop::can::test {
+namespace teleop::hand::test {
+
+using namespace can;  // the CANopen core the hand is built on
 namespace {
 
 namespace od = cia402::od;
@@ -677,4 +679,4 @@ TEST(EmulatedDrive, RejectsInvalidConfiguration) {
 }
 
 }  // namespace
-}  // namespace teleop::can::test
+}  // namespace teleop::hand::test

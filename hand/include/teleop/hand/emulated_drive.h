@@ -42,7 +42,7 @@
 #include "teleop/can/cia301.h"
 #include "teleop/can/cia402.h"
 
-namespace teleop::can {
+namespace teleop::hand {
 
 /// DC motor, gearbox and finger link (output side), with hard stops.
 struct EmulatedMotorParams {
@@ -80,7 +80,7 @@ struct EmulatedControllerParams {
 };
 
 struct EmulatedDriveConfig {
-  NodeId node_id = 1;
+  can::NodeId node_id = 1;
   uint16_t heartbeat_ms = 100;
   uint32_t vendor_id = 0x00000ACE;
   uint32_t product_code = 0x00005748;
@@ -120,7 +120,7 @@ class EmulatedDrive {
 
   /// Does not send anything yet: the boot-up message goes out on the first step().
   /// Throws std::invalid_argument for an invalid node id or non-physical parameters.
-  EmulatedDrive(CanBus& bus, const EmulatedDriveConfig& config);
+  EmulatedDrive(can::CanBus& bus, const EmulatedDriveConfig& config);
   EmulatedDrive(const EmulatedDrive&) = delete;
   EmulatedDrive& operator=(const EmulatedDrive&) = delete;
 
@@ -129,12 +129,12 @@ class EmulatedDrive {
   void step(double dt_s);
 
   // --- observation (for tests and the emulator's own report) ---
-  NodeId node_id() const { return config_.node_id; }
+  can::NodeId node_id() const { return config_.node_id; }
   /// The configuration, with the gains as last written over SDO (object 0x2000).
   const EmulatedDriveConfig& config() const { return config_; }
-  NmtState nmt_state() const { return nmt_; }
+  can::NmtState nmt_state() const { return nmt_; }
   bool booted() const { return !initialising_; }
-  cia402::State state() const { return state_; }
+  can::cia402::State state() const { return state_; }
   uint16_t statusword() const;
   uint16_t controlword() const { return controlword_; }
   int8_t mode_of_operation() const { return mode_; }
@@ -183,20 +183,20 @@ class EmulatedDrive {
     uint8_t transmission_type = 1;
     uint16_t inhibit_100us = 0;
     uint16_t event_timer_ms = 0;
-    std::array<uint32_t, PdoMapping::kMaxEntries> map_raw{};
+    std::array<uint32_t, can::PdoMapping::kMaxEntries> map_raw{};
     uint8_t map_count = 0;
-    PdoMapping mapping;
+    can::PdoMapping mapping;
     // runtime
     uint8_t sync_count = 0;
     bool pending = false;  // received synchronous RPDO waiting for the next SYNC
-    std::array<uint64_t, PdoMapping::kMaxEntries> pending_values{};
+    std::array<uint64_t, can::PdoMapping::kMaxEntries> pending_values{};
     int64_t next_event_ns = 0;
-    CanFrame last_sent;
+    can::CanFrame last_sent;
     bool sent_once = false;
     bool valid() const { return (cob_id & 0x80000000u) == 0; }
   };
   struct DelayedFrame {
-    CanFrame frame;
+    can::CanFrame frame;
     int64_t release_ns = 0;
   };
   struct ObjectInfo;
@@ -205,15 +205,15 @@ class EmulatedDrive {
   void reset_application();
   void reset_communication();
   // bus
-  void send(const CanFrame& frame);
-  void handle_frame(const CanFrame& frame);
-  void handle_nmt(const NmtMessage& message);
-  void handle_sdo(const CanFrame& frame);
+  void send(const can::CanFrame& frame);
+  void handle_frame(const can::CanFrame& frame);
+  void handle_nmt(const can::NmtMessage& message);
+  void handle_sdo(const can::CanFrame& frame);
   void handle_sync();
-  void handle_rpdo(PdoChannel& pdo, const CanFrame& frame);
-  void apply_rpdo(const PdoChannel& pdo, const std::array<uint64_t, PdoMapping::kMaxEntries>& values);
+  void handle_rpdo(PdoChannel& pdo, const can::CanFrame& frame);
+  void apply_rpdo(const PdoChannel& pdo, const std::array<uint64_t, can::PdoMapping::kMaxEntries>& values);
   void send_tpdo(PdoChannel& pdo);
-  void emit_tpdo(const CanFrame& frame);
+  void emit_tpdo(const can::CanFrame& frame);
   void send_emcy(uint16_t error_code, uint8_t error_register, const std::array<uint8_t, 5>& vendor);
   void service_timers();
   // object dictionary: 0 or an SDO abort code
@@ -230,14 +230,14 @@ class EmulatedDrive {
   // CiA 402
   void set_controlword(uint16_t controlword);
   void evaluate_controlword(uint16_t previous);
-  void enter_state(cia402::State next);
+  void enter_state(can::cia402::State next);
   void enter_fault(uint16_t error_code, const std::array<uint8_t, 5>& vendor);
   bool power_on() const;
   // physics and control
   void substep();
   void position_loop();
 
-  CanBus& bus_;
+  can::CanBus& bus_;
   EmulatedDriveConfig config_;
   double ticks_per_rad_ = 1.0;
   int64_t substep_ns_ = 50000;
@@ -249,7 +249,7 @@ class EmulatedDrive {
 
   // NMT and communication
   bool initialising_ = true;
-  NmtState nmt_ = NmtState::kBootUp;
+  can::NmtState nmt_ = can::NmtState::kBootUp;
   uint16_t heartbeat_ms_ = 0;
   int64_t next_heartbeat_ns_ = 0;
   std::array<PdoChannel, kPdoCount> rpdo_{};
@@ -261,7 +261,7 @@ class EmulatedDrive {
   uint8_t error_register_ = 0;
   uint16_t error_code_ = 0;
   uint16_t controlword_ = 0;
-  int8_t mode_ = cia402::kModeNone;
+  int8_t mode_ = can::cia402::kModeNone;
   int32_t target_ticks_ = 0;
   uint32_t following_error_window_ticks_ = 0;
   uint16_t following_error_timeout_ms_ = 0;
@@ -270,7 +270,7 @@ class EmulatedDrive {
   int32_t limit_max_ticks_ = 0;
 
   // CiA 402 state
-  cia402::State state_ = cia402::State::kNotReadyToSwitchOn;
+  can::cia402::State state_ = can::cia402::State::kNotReadyToSwitchOn;
   int64_t fault_reaction_remaining_ns_ = 0;
   bool internal_limit_ = false;
   bool following_error_ = false;
@@ -304,4 +304,4 @@ class EmulatedDrive {
   EmulatedDriveStats stats_;
 };
 
-}  // namespace teleop::can
+}  // namespace teleop::hand

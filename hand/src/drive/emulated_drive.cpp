@@ -1,6 +1,6 @@
-#include "teleop/can/emulated_drive.h"
+#include "teleop/hand/emulated_drive.h"
 
-#include "teleop/can/hand_drive_objects.h"
+#include "teleop/hand/hand_drive_objects.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,9 +9,40 @@
 #include <stdexcept>
 #include <string>
 
-namespace teleop::can {
+namespace teleop::hand {
 
-namespace od = cia402::od;
+namespace cia402 = can::cia402;
+namespace cob = can::cob;
+namespace emcy = can::emcy;
+namespace le = can::le;
+namespace od = can::cia402::od;
+namespace sdo_abort = can::sdo_abort;
+using can::CanBus;
+using can::CanError;
+using can::CanFrame;
+using can::CanStatus;
+using can::decode_nmt;
+using can::decode_pdo;
+using can::decode_sdo_request;
+using can::decode_sync;
+using can::EmcyMessage;
+using can::encode_emcy;
+using can::encode_heartbeat;
+using can::encode_pdo;
+using can::encode_sdo_abort;
+using can::encode_sdo_download_response;
+using can::encode_sdo_upload_response;
+using can::error_register_for;
+using can::NmtCommand;
+using can::NmtMessage;
+using can::NmtState;
+using can::NodeId;
+using can::PdoMapEntry;
+using can::PdoMapping;
+using can::rpdo_cob_id;
+using can::SdoType;
+using can::tpdo_cob_id;
+using can::valid_node;
 using cia402::State;
 
 namespace {
@@ -1175,4 +1206,4 @@ void EmulatedDrive::substep() {
   }
 }
 
-}  // namespace teleop::can
+}  // namespace teleop::hand

@@ -1,10 +1,10 @@
-#include "teleop/can/hand_coupling.h"
+#include "teleop/hand/hand_coupling.h"
 
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-namespace teleop::can {
+namespace teleop::hand {
 
 // clang-format off
 const std::array<std::string_view, kHandJoints> kHandJointNames = {
@@ -94,4 +94,4 @@ double HandCoupling::coefficient(size_t joint, size_t motor) const {
   return terms_[joint].motor == motor ? terms_[joint].factor : 0.0;
 }
 
-}  // namespace teleop::can
+}  // namespace teleop::hand

@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <string_view>
 
-namespace teleop::can {
+namespace teleop::hand {
 
 constexpr size_t kHandMotors = 9;
 constexpr size_t kHandJoints = 20;
@@ -69,4 +69,4 @@ class HandCoupling {
   HandMotorVector column_norm2_{};  // sum_j s_jk^2 per motor
 };
 
-}  // namespace teleop::can
+}  // namespace teleop::hand

@@ -1,6 +1,6 @@
 // The hand adapter against nine emulated drives on a VirtualCanBus, in simulated time: boot,
 // configuration, enable walk, homing, tracking, every fault into safe hold and out by reset.
-#include "teleop/can/hand_adapter.h"
+#include "teleop/hand/hand_adapter.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,9 @@
 #include "hand_rig.h"
 #include "teleop/can/cia402.h"
 
-namespace teleop::can::test {
+namespace teleop::hand::test {
+
+using namespace can;  // the CANopen core the hand is built on
 namespace {
 
 using cia402::State;
@@ -315,4 +317,4 @@ TEST(HandAdapter, RejectsInvalidConfiguration) {
 }
 
 }  // namespace
-}  // namespace teleop::can::test
+}  // namespace teleop::hand::test

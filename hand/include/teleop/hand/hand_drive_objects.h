@@ -7,7 +7,7 @@
 #include <bit>
 #include <cstdint>
 
-namespace teleop::can::hand_od {
+namespace teleop::hand::hand_od {
 
 /// Controller gains, REAL32 (IEEE 754 single) each, read/write by SDO.
 constexpr uint16_t kGains = 0x2000;
@@ -38,4 +38,4 @@ constexpr uint8_t kCount = 6;
 inline uint32_t real32_bits(double value) { return std::bit_cast<uint32_t>(static_cast<float>(value)); }
 inline double real32_value(uint32_t bits) { return static_cast<double>(std::bit_cast<float>(bits)); }
 
-}  // namespace teleop::can::hand_od
+}  // namespace teleop::hand::hand_od

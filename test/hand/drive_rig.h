@@ -11,10 +11,12 @@
 
 #include "teleop/can/cia301.h"
 #include "teleop/can/cia402.h"
-#include "teleop/can/emulated_drive.h"
 #include "teleop/can/virtual_can_bus.h"
+#include "teleop/hand/emulated_drive.h"
 
-namespace teleop::can::test {
+namespace teleop::hand::test {
+
+using namespace can;  // the CANopen core the hand is built on
 
 /// What the default TPDO1 carries: position actual, current actual, statusword.
 struct Feedback {
@@ -155,4 +157,4 @@ class DriveRig {
   Feedback last_feedback_;
 };
 
-}  // namespace teleop::can::test
+}  // namespace teleop::hand::test

@@ -8,7 +8,7 @@
 
 #include "teleop/can/can_frame.h"
 
-namespace teleop::can {
+namespace teleop::hand {
 
 struct MotorChannelConfig {
   /// Encoder ticks per motor revolution (after quadrature decoding).
@@ -38,19 +38,19 @@ class MotorChannel {
   double ticks_to_rad(int32_t ticks) const;
   /// Joint angle to target position (0x607A), rounded to the nearest tick; kValueOutOfRange for
   /// NaN/Inf or an angle beyond the INTEGER32 range.
-  Result<int32_t> rad_to_ticks(double rad) const;
+  can::Result<int32_t> rad_to_ticks(double rad) const;
   /// Velocity actual value (0x606C) to rad/s.
   double ticks_per_s_to_radps(int32_t ticks_per_s) const;
-  Result<int32_t> radps_to_ticks_per_s(double radps) const;
+  can::Result<int32_t> radps_to_ticks_per_s(double radps) const;
   /// Current actual value (0x6078, per mille of rated current) to A. Current is signed like
   /// the ticks: positive current drives the ticks up, so it is multiplied by `sign`.
   double permille_to_amps(int16_t permille) const;
   /// A current limit [A] (>= 0) to the max current object (0x6073, UNSIGNED16 per mille).
-  Result<uint16_t> amps_to_max_current_permille(double amps) const;
+  can::Result<uint16_t> amps_to_max_current_permille(double amps) const;
 
  private:
   MotorChannelConfig config_;
   double rad_per_tick_ = 0.0;
 };
 
-}  // namespace teleop::can
+}  // namespace teleop::hand
