@@ -34,9 +34,14 @@
 // does not act on the CiA 402 state (no communication-error reaction: object 0x6007 is not emulated);
 // a reset keeps the link where it is (an absolute encoder). Torque actual (0x6077) equals
 // current actual (0x6078): a DC motor, rated torque = k_t * rated current.
+//
+// Inside (hand/src/drive/), one part per responsibility, composed here: the object dictionary
+// (one table), the SDO server, the PDO engine, the NMT slave, the CiA 402 device side, the
+// servo controller, the motor model and fault injection.
 
 #include <array>
 #include <cstdint>
+#include <memory>
 
 #include "teleop/can/can_bus.h"
 #include "teleop/can/cia301.h"
@@ -121,6 +126,7 @@ class EmulatedDrive {
   /// Does not send anything yet: the boot-up message goes out on the first step().
   /// Throws std::invalid_argument for an invalid node id or non-physical parameters.
   EmulatedDrive(can::CanBus& bus, const EmulatedDriveConfig& config);
+  ~EmulatedDrive();
   EmulatedDrive(const EmulatedDrive&) = delete;
   EmulatedDrive& operator=(const EmulatedDrive&) = delete;
 
@@ -132,176 +138,65 @@ class EmulatedDrive {
   can::NodeId node_id() const { return config_.node_id; }
   /// The configuration, with the gains as last written over SDO (object 0x2000).
   const EmulatedDriveConfig& config() const { return config_; }
-  can::NmtState nmt_state() const { return nmt_; }
-  bool booted() const { return !initialising_; }
-  can::cia402::State state() const { return state_; }
+  can::NmtState nmt_state() const;
+  bool booted() const;
+  can::cia402::State state() const;
   uint16_t statusword() const;
-  uint16_t controlword() const { return controlword_; }
-  int8_t mode_of_operation() const { return mode_; }
-  uint16_t error_code() const { return error_code_; }
+  uint16_t controlword() const;
+  int8_t mode_of_operation() const;
+  uint16_t error_code() const;
   double time_s() const { return static_cast<double>(now_ns_) * 1e-9; }
   /// True link angle [rad] (output side) and velocity, true motor current.
-  double position_rad() const { return q_rad_; }
-  double velocity_radps() const { return dq_radps_; }
-  double current_a() const { return current_a_; }
+  double position_rad() const;
+  double velocity_radps() const;
+  double current_a() const;
   /// Position-loop reference after software limits and the step limit [rad].
-  double reference_rad() const { return ref_rad_; }
+  double reference_rad() const;
   int32_t position_ticks() const;
-  int32_t target_ticks() const { return target_ticks_; }
+  int32_t target_ticks() const;
   /// Software position limits (0x607D sub 1, 2) [ticks].
-  int32_t limit_min_ticks() const { return limit_min_ticks_; }
-  int32_t limit_max_ticks() const { return limit_max_ticks_; }
+  int32_t limit_min_ticks() const;
+  int32_t limit_max_ticks() const;
   /// Encoder ticks per output radian (ticks_per_rev * gear_ratio / 2 pi).
-  double ticks_per_rad() const { return ticks_per_rad_; }
+  double ticks_per_rad() const;
   /// Current limit in force [A] (0x6073 and the hardware peak).
   double current_limit_a() const;
-  const EmulatedDriveStats& stats() const { return stats_; }
+  const EmulatedDriveStats& stats() const;
 
   // --- fault injection ---
   /// Stops (true) or resumes the heartbeat; everything else keeps working.
-  void set_heartbeat_suppressed(bool suppressed) { heartbeat_suppressed_ = suppressed; }
+  void set_heartbeat_suppressed(bool suppressed);
   /// A drive fault with this EMCY code (and vendor bytes): EMCY now, fault reaction, fault.
   void raise_fault(uint16_t error_code, const std::array<uint8_t, 5>& vendor = {});
   /// Jams the motor mechanically (true) or frees it; a position demand it cannot follow then
   /// ends in a following error (EMCY 0x8611) after 0x6066 ms.
-  void set_stalled(bool stalled) { stalled_ = stalled; }
+  void set_stalled(bool stalled);
   /// Drops the next `count` TPDOs / RPDOs (kDropForever: until called again with 0).
-  void drop_tpdos(uint32_t count) { drop_tpdos_ = count; }
-  void drop_rpdos(uint32_t count) { drop_rpdos_ = count; }
+  void drop_tpdos(uint32_t count);
+  void drop_rpdos(uint32_t count);
   /// Aborts every SDO request (code 0x08000021, local control) except to the fault injection
   /// object 0x2F00, e.g. to test a master's reaction to SDO aborts.
-  void set_sdo_refused(bool refused) { sdo_refused_ = refused; }
+  void set_sdo_refused(bool refused);
   /// Sends every TPDO this much later than sampled (0 = at once); at most 16 wait at a time.
   void set_tpdo_delay(double seconds);
 
  private:
-  static constexpr size_t kPdoCount = 2;
-  static constexpr size_t kDelayQueue = 16;
+  struct Parts;  // hand/src/drive/drive_parts.h
 
-  struct PdoChannel {
-    uint32_t cob_id = 0;  // bit 31 set = not valid
-    uint8_t transmission_type = 1;
-    uint16_t inhibit_100us = 0;
-    uint16_t event_timer_ms = 0;
-    std::array<uint32_t, can::PdoMapping::kMaxEntries> map_raw{};
-    uint8_t map_count = 0;
-    can::PdoMapping mapping;
-    // runtime
-    uint8_t sync_count = 0;
-    bool pending = false;  // received synchronous RPDO waiting for the next SYNC
-    std::array<uint64_t, can::PdoMapping::kMaxEntries> pending_values{};
-    int64_t next_event_ns = 0;
-    can::CanFrame last_sent;
-    bool sent_once = false;
-    bool valid() const { return (cob_id & 0x80000000u) == 0; }
-  };
-  struct DelayedFrame {
-    can::CanFrame frame;
-    int64_t release_ns = 0;
-  };
-  struct ObjectInfo;
-
-  // setup
-  void reset_application();
-  void reset_communication();
-  // bus
-  void send(const can::CanFrame& frame);
   void handle_frame(const can::CanFrame& frame);
   void handle_nmt(const can::NmtMessage& message);
-  void handle_sdo(const can::CanFrame& frame);
-  void handle_sync();
-  void handle_rpdo(PdoChannel& pdo, const can::CanFrame& frame);
-  void apply_rpdo(const PdoChannel& pdo, const std::array<uint64_t, can::PdoMapping::kMaxEntries>& values);
-  void send_tpdo(PdoChannel& pdo);
-  void emit_tpdo(const can::CanFrame& frame);
-  void send_emcy(uint16_t error_code, uint8_t error_register, const std::array<uint8_t, 5>& vendor);
-  void service_timers();
-  // object dictionary: 0 or an SDO abort code
-  bool find_object(uint16_t index, uint8_t subindex, ObjectInfo& info, uint32_t& abort) const;
-  uint32_t read_object(uint16_t index, uint8_t subindex, uint32_t& value) const;
-  uint32_t write_object(uint16_t index, uint8_t subindex, uint32_t value);
-  uint32_t write_pdo_communication(PdoChannel& pdo, bool transmit, uint8_t subindex, uint32_t value);
-  uint32_t write_pdo_mapping(PdoChannel& pdo, bool transmit, uint8_t subindex, uint32_t value);
-  // manufacturer objects (hand_drive_objects.h)
-  uint32_t read_gain(uint8_t subindex, uint32_t& value) const;
-  uint32_t write_gain(uint8_t subindex, uint32_t value);
-  uint32_t read_injection(uint8_t subindex, uint32_t& value) const;
-  uint32_t write_injection(uint8_t subindex, uint32_t value);
-  // CiA 402
-  void set_controlword(uint16_t controlword);
-  void evaluate_controlword(uint16_t previous);
-  void enter_state(can::cia402::State next);
-  void enter_fault(uint16_t error_code, const std::array<uint8_t, 5>& vendor);
-  bool power_on() const;
-  // physics and control
+  void reset_application();
+  void reset_communication();
   void substep();
-  void position_loop();
 
-  can::CanBus& bus_;
-  EmulatedDriveConfig config_;
-  double ticks_per_rad_ = 1.0;
-  int64_t substep_ns_ = 50000;
-
-  // time
+  EmulatedDriveConfig config_;  // the parts read it; SDO writes its gains
   int64_t now_ns_ = 0;
-  int64_t pending_ns_ = 0;
+  int64_t pending_ns_ = 0;  // time stepped but not yet simulated (less than a substep)
+  int64_t substep_ns_ = 50000;
   unsigned substep_count_ = 0;
-
-  // NMT and communication
-  bool initialising_ = true;
-  can::NmtState nmt_ = can::NmtState::kBootUp;
-  uint16_t heartbeat_ms_ = 0;
-  int64_t next_heartbeat_ns_ = 0;
-  std::array<PdoChannel, kPdoCount> rpdo_{};
-  std::array<PdoChannel, kPdoCount> tpdo_{};
-  std::array<DelayedFrame, kDelayQueue> delayed_{};
-  size_t delayed_count_ = 0;
-
-  // application objects
-  uint8_t error_register_ = 0;
-  uint16_t error_code_ = 0;
-  uint16_t controlword_ = 0;
-  int8_t mode_ = can::cia402::kModeNone;
-  int32_t target_ticks_ = 0;
-  uint32_t following_error_window_ticks_ = 0;
-  uint16_t following_error_timeout_ms_ = 0;
-  uint16_t max_current_permille_ = 0;
-  int32_t limit_min_ticks_ = 0;
-  int32_t limit_max_ticks_ = 0;
-
-  // CiA 402 state
-  can::cia402::State state_ = can::cia402::State::kNotReadyToSwitchOn;
-  int64_t fault_reaction_remaining_ns_ = 0;
-  bool internal_limit_ = false;
-  bool following_error_ = false;
-  int64_t following_error_ns_ = 0;  // time the error has been above the window
-
-  // controller
-  double ref_rad_ = 0.0;
-  double ref_velocity_radps_ = 0.0;
-  double position_integral_a_ = 0.0;
-  double current_ref_a_ = 0.0;
-  double current_integral_v_ = 0.0;
-  double q_meas_prev_rad_ = 0.0;
-  double velocity_filtered_radps_ = 0.0;
-  double velocity_filter_alpha_ = 1.0;
-  double current_decay_ = 0.0;
-
-  // plant
-  double q_rad_ = 0.0;
-  double dq_radps_ = 0.0;
-  double current_a_ = 0.0;
-  double voltage_v_ = 0.0;
-
-  // fault injection
-  bool heartbeat_suppressed_ = false;
-  bool stalled_ = false;
-  uint32_t drop_tpdos_ = 0;
-  uint32_t drop_rpdos_ = 0;
-  int64_t tpdo_delay_ns_ = 0;
-  bool sdo_refused_ = false;
-
-  EmulatedDriveStats stats_;
+  // the parts, allocated once at construction: they keep references to each other and to
+  // config_ and now_ns_, so they live at a fixed address
+  std::unique_ptr<Parts> parts_;
 };
 
 }  // namespace teleop::hand
