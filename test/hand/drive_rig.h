@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -156,5 +157,39 @@ class DriveRig {
   std::vector<CanFrame> received_;
   Feedback last_feedback_;
 };
+
+/// The drive's encoder ticks for an output angle.
+inline int32_t ticks(const DriveRig& rig, double rad) {
+  return static_cast<int32_t>(std::lround(rad * rig.drive().ticks_per_rad()));
+}
+
+/// The EMCY messages / heartbeats the master received.
+inline std::vector<EmcyMessage> emcys(const DriveRig& rig) {
+  std::vector<EmcyMessage> out;
+  for (const CanFrame& f : rig.frames(cob::kEmcy + rig.node())) {
+    const auto m = decode_emcy(f);
+    EXPECT_TRUE(m.ok());
+    if (m.ok()) out.push_back(*m);
+  }
+  return out;
+}
+
+inline std::vector<HeartbeatMessage> heartbeats(const DriveRig& rig) {
+  std::vector<HeartbeatMessage> out;
+  for (const CanFrame& f : rig.frames(cob::kHeartbeat + rig.node())) {
+    const auto m = decode_heartbeat(f);
+    EXPECT_TRUE(m.ok());
+    if (m.ok()) out.push_back(*m);
+  }
+  return out;
+}
+
+/// The abort code of an SDO response that must be an abort.
+inline uint32_t abort_of(const Result<SdoMessage>& r) {
+  EXPECT_TRUE(r.ok());
+  if (!r.ok()) return 0;
+  EXPECT_EQ(r->type, SdoType::kAbort);
+  return r->abort_code;
+}
 
 }  // namespace teleop::hand::test
