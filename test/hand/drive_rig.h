@@ -18,6 +18,8 @@
 namespace teleop::hand::test {
 
 using namespace can;  // the CANopen core the hand is built on
+namespace od = cia402::od;
+using cia402::State;
 
 /// What the default TPDO1 carries: position actual, current actual, statusword.
 struct Feedback {

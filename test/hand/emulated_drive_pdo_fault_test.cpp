@@ -13,9 +13,6 @@ using namespace can;  // the CANopen core the hand is built on
 
 namespace {
 
-namespace od = cia402::od;
-using cia402::State;
-
 // --- PDO configuration ------------------------------------------------------------------------------
 
 TEST(EmulatedDrive, EnforcesPdoMappingRules) {

@@ -19,9 +19,6 @@ using namespace can;  // the CANopen core the hand is built on
 
 namespace {
 
-namespace od = cia402::od;
-using cia402::State;
-
 // --- NMT, boot-up, heartbeat ----------------------------------------------------------------------
 
 TEST(EmulatedDrive, SendsBootUpOnFirstStepThenHeartbeatsEveryPeriod) {

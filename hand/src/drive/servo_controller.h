@@ -52,13 +52,15 @@ class ServoController {
   const EmulatedControllerParams& gains_;
   double supply_v_;
   double velocity_filter_alpha_;  // first-order low-pass per position period
+  // the velocity estimate from the encoder's readings
+  double velocity_filtered_radps_ = 0.0;
+  double measured_prev_rad_;
+  // the position loop's reference and integral, the current loop's demand and integral
   double ref_rad_ = 0.0;
   double ref_velocity_radps_ = 0.0;
   double position_integral_a_ = 0.0;
   double current_ref_a_ = 0.0;
   double current_integral_v_ = 0.0;
-  double measured_prev_rad_;
-  double velocity_filtered_radps_ = 0.0;
 };
 
 }  // namespace teleop::hand::drive
