@@ -214,16 +214,8 @@ class HandAdapter {
     bool homed = false;
   };
 
-  // setup
+  // --- hand_adapter.cpp ---
   void validate() const;
-  void queue_configuration(Drive& d, size_t motor);
-  void queue_limits(Drive& d, size_t motor);
-  void queue_sdo(Drive& d, uint16_t index, uint8_t subindex, uint32_t value, uint8_t size);
-  // receive
-  void receive_all(int64_t now_ns);
-  void handle_frame(const can::CanFrame& frame, int64_t now_ns);
-  void handle_tpdo(Drive& d, size_t motor, const can::CanFrame& frame);
-  void handle_sdo_response(Drive& d, size_t motor, const can::CanFrame& frame);
   // phases
   void boot(int64_t now_ns);
   void configure(int64_t now_ns);
@@ -231,16 +223,26 @@ class HandAdapter {
   void home(int64_t now_ns);
   void operate();
   void hold();
-  bool pump_sdo(int64_t now_ns);
   void check_faults(int64_t now_ns);
   void enter(HandPhase phase, int64_t now_ns);
   void enter_safe_hold(int64_t now_ns);
   void fail(const char* format, ...) __attribute__((format(printf, 2, 3)));
+  void update_feedback_faults();
+  void hold_actual_positions();
+  // --- hand_adapter_bus.cpp ---
+  // the SDO client
+  void queue_configuration(Drive& d, size_t motor);
+  void queue_limits(Drive& d, size_t motor);
+  void queue_sdo(Drive& d, uint16_t index, uint8_t subindex, uint32_t value, uint8_t size);
+  bool pump_sdo(int64_t now_ns);
+  // receive
+  void receive_all(int64_t now_ns);
+  void handle_frame(const can::CanFrame& frame, int64_t now_ns);
+  void handle_tpdo(Drive& d, size_t motor, const can::CanFrame& frame);
+  void handle_sdo_response(Drive& d, size_t motor, const can::CanFrame& frame);
   // send
   void send(const can::Result<can::CanFrame>& frame);
   void send_cyclic();
-  void update_feedback_faults();
-  void hold_actual_positions();
 
   can::CanBus& bus_;
   HandAdapterConfig config_;
