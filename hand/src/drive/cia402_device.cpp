@@ -75,9 +75,7 @@ void Cia402Device::raise_fault(uint16_t error_code, const std::array<uint8_t, 5>
   enter_fault(error_code, vendor);
 }
 
-bool Cia402Device::power_on() const {
-  return state_ == State::kOperationEnabled || state_ == State::kQuickStopActive;
-}
+bool Cia402Device::power_on() const { return state_ == State::kOperationEnabled || state_ == State::kQuickStopActive; }
 
 void Cia402Device::enter_state(State next) {
   if (next == state_) return;

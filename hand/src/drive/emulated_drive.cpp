@@ -71,10 +71,10 @@ void EmulatedDrive::step(double dt_s) {
 void EmulatedDrive::handle_frame(const CanFrame& frame) {
   Parts& p = *parts_;
   ++p.link.stats().frames_received;
-  if (frame.error()) return;            // the controller's own business
-  if (p.nmt.initialising()) return;     // a node in initialisation takes part in nothing
+  if (frame.error()) return;         // the controller's own business
+  if (p.nmt.initialising()) return;  // a node in initialisation takes part in nothing
   if (p.pdos.receive(frame, p.objects)) return;
-  if (frame.extended()) return;         // every fixed CANopen service has an 11-bit id
+  if (frame.extended()) return;  // every fixed CANopen service has an 11-bit id
   const can::NodeId id = config_.node_id;
   if (frame.id == can::cob::kNmt) {
     const auto nmt = can::decode_nmt(frame);

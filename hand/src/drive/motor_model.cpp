@@ -52,11 +52,11 @@ void MotorModel::move_link(bool stalled) {
   double torque =
       m.gear_ratio * m.gear_efficiency * m.torque_constant_nm_per_a * current_a_ - m.viscous_nms_per_rad * dq_radps_;
   if (q_rad_ > m.stop_max_rad) {
-    torque +=
-        std::min(0.0, -m.stop_stiffness_nm_per_rad * (q_rad_ - m.stop_max_rad) - m.stop_damping_nms_per_rad * dq_radps_);
+    torque += std::min(
+        0.0, -m.stop_stiffness_nm_per_rad * (q_rad_ - m.stop_max_rad) - m.stop_damping_nms_per_rad * dq_radps_);
   } else if (q_rad_ < m.stop_min_rad) {
-    torque +=
-        std::max(0.0, -m.stop_stiffness_nm_per_rad * (q_rad_ - m.stop_min_rad) - m.stop_damping_nms_per_rad * dq_radps_);
+    torque += std::max(
+        0.0, -m.stop_stiffness_nm_per_rad * (q_rad_ - m.stop_min_rad) - m.stop_damping_nms_per_rad * dq_radps_);
   }
   // the rotor's inertia appears at the output multiplied by the square of the gear ratio
   const double inertia = m.link_inertia_kgm2 + m.rotor_inertia_kgm2 * m.gear_ratio * m.gear_ratio;

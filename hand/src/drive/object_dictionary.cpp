@@ -106,9 +106,9 @@ uint32_t set_max_current(const ObjectOwners& o, uint16_t, uint8_t, uint32_t valu
 }
 
 // the controller parameter behind each subindex 1.. of the gains object (REAL32 each)
-constexpr double EmulatedControllerParams::* kGainSlots[hand_od::gain::kCount] = {
-    &EmulatedControllerParams::position_kp_a_per_rad,     &EmulatedControllerParams::position_ki_a_per_rad_s,
-    &EmulatedControllerParams::position_kd_a_s_per_rad,   &EmulatedControllerParams::position_integral_limit_a,
+constexpr double EmulatedControllerParams::*kGainSlots[hand_od::gain::kCount] = {
+    &EmulatedControllerParams::position_kp_a_per_rad,        &EmulatedControllerParams::position_ki_a_per_rad_s,
+    &EmulatedControllerParams::position_kd_a_s_per_rad,      &EmulatedControllerParams::position_integral_limit_a,
     &EmulatedControllerParams::max_reference_velocity_radps, &EmulatedControllerParams::current_kp_v_per_a,
     &EmulatedControllerParams::current_ki_v_per_a_s};
 
@@ -164,7 +164,8 @@ constexpr ObjectEntry kFixedObjects[] = {
     {od::kMotorRatedCurrent, 0, 32, kNoPdo, rated_current},
     {od::kTorqueActualValue, 0, 16, kTpdo, current_actual},
     {od::kCurrentActualValue, 0, 16, kTpdo, current_actual},
-    {od::kTargetPosition, 0, 32, kRpdo, device_value<&D::target_ticks>, set_device_value<int32_t, &D::set_target_ticks>},
+    {od::kTargetPosition, 0, 32, kRpdo, device_value<&D::target_ticks>,
+     set_device_value<int32_t, &D::set_target_ticks>},
     {od::kSoftwarePositionLimit, 0, 8, kNoPdo, constant<2>},
     {od::kSoftwarePositionLimit, 1, 32, kNoPdo, device_value<&D::limit_min_ticks>,
      set_device_value<int32_t, &D::set_limit_min_ticks>},

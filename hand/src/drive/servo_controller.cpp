@@ -8,8 +8,8 @@ namespace teleop::hand::drive {
 ServoController::ServoController(const EmulatedControllerParams& gains, double supply_v, double measured_rad)
     : gains_(gains),
       supply_v_(supply_v),
-      velocity_filter_alpha_(1.0 - std::exp(-2.0 * M_PI * gains.velocity_filter_hz *
-                                            (gains.substep_s * gains.position_loop_divider))),
+      velocity_filter_alpha_(
+          1.0 - std::exp(-2.0 * M_PI * gains.velocity_filter_hz * (gains.substep_s * gains.position_loop_divider))),
       measured_prev_rad_(measured_rad) {}
 
 void ServoController::sense(double measured_rad) {
@@ -19,66 +19,66 @@ void ServoController::sense(double measured_rad) {
 }
 
 void ServoController::follow(double measured_rad) {
-  ref_rad_ = measured_rad;
-  ref_velocity_radps_ = 0;
-  current_ref_a_ = 0;
+  position_.ref_rad = measured_rad;
+  position_.ref_velocity_radps = 0;
+  current_.ref_a = 0;
 }
 
 void ServoController::approach(double target_rad) {
   const double period_s = position_period_s();
   const double max_step = gains_.max_reference_velocity_radps * period_s;
-  const double step = std::clamp(target_rad - ref_rad_, -max_step, max_step);
-  ref_rad_ += step;
-  ref_velocity_radps_ = step / period_s;
+  const double step = std::clamp(target_rad - position_.ref_rad, -max_step, max_step);
+  position_.ref_rad += step;
+  position_.ref_velocity_radps = step / period_s;
 }
 
-void ServoController::hold() { ref_velocity_radps_ = 0; }
+void ServoController::hold() { position_.ref_velocity_radps = 0; }
 
 ServoController::Regulation ServoController::regulate(double measured_rad, double current_limit_a) {
   const EmulatedControllerParams& c = gains_;
   // PID with derivative on the error (the reference is rate-limited, so there is no kick)
-  const double error = ref_rad_ - measured_rad;
-  const double derror = ref_velocity_radps_ - velocity_filtered_radps_;
+  const double error = position_.ref_rad - measured_rad;
+  const double derror = position_.ref_velocity_radps - velocity_filtered_radps_;
   const double unsaturated =
-      c.position_kp_a_per_rad * error + position_integral_a_ + c.position_kd_a_s_per_rad * derror;
+      c.position_kp_a_per_rad * error + position_.integral_a + c.position_kd_a_s_per_rad * derror;
   const double command = std::clamp(unsaturated, -current_limit_a, current_limit_a);
   // anti-windup: integrate unless saturated and the error would push further into saturation
   if (command == unsaturated || (error > 0) != (unsaturated > 0)) {
     const double integral_limit = std::min(c.position_integral_limit_a, current_limit_a);
-    position_integral_a_ = std::clamp(position_integral_a_ + c.position_ki_a_per_rad_s * error * position_period_s(),
+    position_.integral_a = std::clamp(position_.integral_a + c.position_ki_a_per_rad_s * error * position_period_s(),
                                       -integral_limit, integral_limit);
   }
-  current_ref_a_ = command;
+  current_.ref_a = command;
   return {error, command != unsaturated};
 }
 
 double ServoController::current_loop(double current_a) {
   const EmulatedControllerParams& c = gains_;
-  const double error = current_ref_a_ - current_a;
-  const double unsaturated = c.current_kp_v_per_a * error + current_integral_v_;
+  const double error = current_.ref_a - current_a;
+  const double unsaturated = c.current_kp_v_per_a * error + current_.integral_v;
   const double volts = std::clamp(unsaturated, -supply_v_, supply_v_);
   if (volts == unsaturated || (error > 0) != (unsaturated > 0)) {
-    current_integral_v_ =
-        std::clamp(current_integral_v_ + c.current_ki_v_per_a_s * error * c.substep_s, -supply_v_, supply_v_);
+    current_.integral_v =
+        std::clamp(current_.integral_v + c.current_ki_v_per_a_s * error * c.substep_s, -supply_v_, supply_v_);
   }
   return volts;
 }
 
 void ServoController::hold_at(double measured_rad) {
-  ref_rad_ = measured_rad;
-  ref_velocity_radps_ = 0;
+  position_.ref_rad = measured_rad;
+  position_.ref_velocity_radps = 0;
 }
 
 void ServoController::start_at(double measured_rad) {
   hold_at(measured_rad);
-  position_integral_a_ = 0;
-  current_integral_v_ = 0;
+  position_.integral_a = 0;
+  current_.integral_v = 0;
 }
 
 void ServoController::release() {
-  current_ref_a_ = 0;
-  position_integral_a_ = 0;
-  current_integral_v_ = 0;
+  current_.ref_a = 0;
+  position_.integral_a = 0;
+  current_.integral_v = 0;
 }
 
 void ServoController::reset(double measured_rad) {

@@ -15,7 +15,7 @@ class ServoController {
   ServoController(const EmulatedControllerParams& gains, double supply_v, double measured_rad);
 
   double position_period_s() const { return gains_.substep_s * gains_.position_loop_divider; }
-  double reference_rad() const { return ref_rad_; }
+  double reference_rad() const { return position_.ref_rad; }
   double velocity_estimate_radps() const { return velocity_filtered_radps_; }
 
   // --- position loop, once per position period ---
@@ -55,12 +55,15 @@ class ServoController {
   // the velocity estimate from the encoder's readings
   double velocity_filtered_radps_ = 0.0;
   double measured_prev_rad_;
-  // the position loop's reference and integral, the current loop's demand and integral
-  double ref_rad_ = 0.0;
-  double ref_velocity_radps_ = 0.0;
-  double position_integral_a_ = 0.0;
-  double current_ref_a_ = 0.0;
-  double current_integral_v_ = 0.0;
+  struct PositionLoop {
+    double ref_rad = 0.0;  // the reference, moved at most one step per period
+    double ref_velocity_radps = 0.0;
+    double integral_a = 0.0;
+  } position_;
+  struct CurrentLoop {
+    double ref_a = 0.0;  // the position loop's output
+    double integral_v = 0.0;
+  } current_;
 };
 
 }  // namespace teleop::hand::drive
