@@ -19,15 +19,18 @@ class FaultInjection {
 
   explicit FaultInjection(DriveLink& link) : link_(link) {}
 
+  // what is in force
   bool heartbeat_suppressed() const { return heartbeat_suppressed_; }
-  void set_heartbeat_suppressed(bool suppressed) { heartbeat_suppressed_ = suppressed; }
   bool stalled() const { return stalled_; }
-  void set_stalled(bool stalled) { stalled_ = stalled; }
   bool sdo_refused() const { return sdo_refused_; }
-  void set_sdo_refused(bool refused) { sdo_refused_ = refused; }
   /// PDOs still to drop (EmulatedDrive::kDropForever: until set to 0).
   uint32_t tpdos_to_drop() const { return drop_tpdos_; }
   uint32_t rpdos_to_drop() const { return drop_rpdos_; }
+
+  // the injection calls (EmulatedDrive's and object 0x2F00's)
+  void set_heartbeat_suppressed(bool suppressed) { heartbeat_suppressed_ = suppressed; }
+  void set_stalled(bool stalled) { stalled_ = stalled; }
+  void set_sdo_refused(bool refused) { sdo_refused_ = refused; }
   void drop_tpdos(uint32_t count) { drop_tpdos_ = count; }
   void drop_rpdos(uint32_t count) { drop_rpdos_ = count; }
   void set_tpdo_delay(double seconds);
