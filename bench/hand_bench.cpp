@@ -31,12 +31,12 @@
 #include <thread>
 #include <vector>
 
-#include "teleop/can/emulated_drive.h"
-#include "teleop/can/hand_adapter.h"
 #include "teleop/can/socketcan_bus.h"
 #include "teleop/can/virtual_can_bus.h"
 #include "teleop/common/clock.h"
 #include "teleop/common/histogram.h"
+#include "teleop/hand/emulated_drive.h"
+#include "teleop/hand/hand_adapter.h"
 #include "teleop/transport/participant.h"
 #include "teleop/transport/publication.h"
 #include "teleop/transport/subscription.h"
@@ -45,8 +45,8 @@
 namespace {
 
 using namespace teleop;
-using can::HandAdapter;
-using can::HandPhase;
+using hand::HandAdapter;
+using hand::HandPhase;
 
 struct Options {
   std::string interface = "vcan0";
@@ -112,7 +112,7 @@ DurationHistogram time_cycles(HandAdapter& adapter, int cycles, const std::funct
   if (adapter.phase() != HandPhase::kOperational) throw std::runtime_error(adapter.message());
   DurationHistogram h;
   for (int i = 0; i < cycles; ++i) {
-    can::HandTargets t;
+    hand::HandTargets t;
     t.position_rad.fill(0.5 + 0.3 * std::sin(i * 0.01));
     t.enable = true;
     const int64_t start = monotonic_now_ns();
@@ -131,14 +131,14 @@ void cycle_cost_virtual(const Options& o) {
   can::VirtualCanBus bus;
   auto adapter_ep = bus.open("adapter");
   std::vector<std::unique_ptr<can::VirtualCanEndpoint>> eps;
-  std::vector<std::unique_ptr<can::EmulatedDrive>> drives;
+  std::vector<std::unique_ptr<hand::EmulatedDrive>> drives;
   for (can::NodeId n = 1; n <= 9; ++n) {
     eps.push_back(bus.open("drive"));
-    can::EmulatedDriveConfig c;
+    hand::EmulatedDriveConfig c;
     c.node_id = n;
-    drives.push_back(std::make_unique<can::EmulatedDrive>(*eps.back(), c));
+    drives.push_back(std::make_unique<hand::EmulatedDrive>(*eps.back(), c));
   }
-  HandAdapter adapter(*adapter_ep, can::HandAdapterConfig{});
+  HandAdapter adapter(*adapter_ep, hand::HandAdapterConfig{});
   // the drives run between the cycles, outside the timed call
   const auto h = time_cycles(adapter, o.cycles, [&] {
     for (auto& d : drives) d->step(4e-3);
@@ -146,8 +146,8 @@ void cycle_cost_virtual(const Options& o) {
   print("adapter cycle, VirtualCanBus + 9 EmulatedDrives", h);
 }
 
-can::HandAdapterConfig vm_config() {
-  can::HandAdapterConfig c;  // the HIL tests' timeouts: a TCG VM stalls
+hand::HandAdapterConfig vm_config() {
+  hand::HandAdapterConfig c;  // the HIL tests' timeouts: a TCG VM stalls
   c.pdo_timeout_cycles = 75;
   c.heartbeat_timeout_s = 1.0;
   c.boot_timeout_s = 5.0;
@@ -178,7 +178,7 @@ void command_to_bus(HandAdapter& adapter, const Options& o) {
     sleep_until_ns(next - period + (period * (k % 10)) / 10);
     const double target = 0.3 + 0.002 * (k % 200);
     const int32_t ticks = *adapter.channel(0).rad_to_ticks(target);
-    can::HandTargets t;
+    hand::HandTargets t;
     t.position_rad.fill(target);
     t.enable = true;
     const int64_t commanded_ns = system_now_ns();
@@ -205,7 +205,7 @@ void command_to_bus(HandAdapter& adapter, const Options& o) {
 }
 
 void cycle_cost_socketcan(const Options& o) {
-  const can::HandAdapterConfig config = vm_config();
+  const hand::HandAdapterConfig config = vm_config();
   can::SocketCanOptions so;
   so.filters = can::canopen_master_filters(config.node_ids);
   can::SocketCanBus bus(o.interface, so);
@@ -257,7 +257,7 @@ void end_to_end(const Options& o) {
     const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
     throw std::runtime_error("no HandState from teleop_hand within 60 s; its output:\n" + text);
   }
-  const can::MotorChannel channel(can::HandAdapterConfig{}.channels[0]);
+  const hand::MotorChannel channel(hand::HandAdapterConfig{}.channels[0]);
   DurationHistogram h;
   int lost = 0;
   for (int k = 0; k < o.samples; ++k) {

@@ -3,24 +3,22 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "teleop/common/joint_config.h"
 #include "teleop/can/virtual_can_bus.h"
+#include "teleop/common/joint_config.h"
 
 namespace teleop::hand {
 
 namespace {
 
-using can::kHandMotors;
-
 // a list of exactly nine values (one per motor), or `fallback` for each when absent
-can::HandMotorVector read_motor_list(const ConfigNode& s, const std::string& key, Range range, double fallback) {
+HandMotorVector read_motor_list(const ConfigNode& s, const std::string& key, Range range, double fallback) {
   const JointVector v = read_joint_list(s, key, kHandMotors, range, fallback);
-  can::HandMotorVector out{};
+  HandMotorVector out{};
   std::copy_n(v.begin(), kHandMotors, out.begin());
   return out;
 }
 
-void read_gains(const ConfigNode& s, can::HandGains& g) {
+void read_gains(const ConfigNode& s, HandGains& g) {
   g.position_kp_a_per_rad = s.get_double("position_kp_a_per_rad", Range{0, 1e4}, g.position_kp_a_per_rad);
   g.position_ki_a_per_rad_s = s.get_double("position_ki_a_per_rad_s", Range{0, 1e6}, g.position_ki_a_per_rad_s);
   g.position_kd_a_s_per_rad = s.get_double("position_kd_a_s_per_rad", Range{0, 1e3}, g.position_kd_a_s_per_rad);
@@ -31,12 +29,12 @@ void read_gains(const ConfigNode& s, can::HandGains& g) {
   g.current_ki_v_per_a_s = s.get_double("current_ki_v_per_a_s", Range{0, 1e7}, g.current_ki_v_per_a_s);
 }
 
-void read_homing(const ConfigNode& s, can::HandHomingConfig& h) {
+void read_homing(const ConfigNode& s, HandHomingConfig& h) {
   h.enabled = s.get_bool("enabled", h.enabled);
   h.velocity_radps = s.get_double("velocity_radps", Range{1e-3, 10}, h.velocity_radps);
   h.current_threshold_a = s.get_double("current_threshold_a", Range{1e-3, 100}, h.current_threshold_a);
   h.timeout_s = s.get_double("timeout_s", Range{0.1, 120}, h.timeout_s);
-  const can::HandMotorVector dir = read_motor_list(s, "direction", Range{-1, 1}, -1);
+  const HandMotorVector dir = read_motor_list(s, "direction", Range{-1, 1}, -1);
   for (size_t m = 0; m < kHandMotors; ++m) {
     if (dir[m] != 1.0 && dir[m] != -1.0) throw s.error("direction", "each entry must be -1 or 1");
     h.direction[m] = static_cast<int>(dir[m]);
@@ -44,7 +42,7 @@ void read_homing(const ConfigNode& s, can::HandHomingConfig& h) {
   h.stop_position_rad = read_motor_list(s, "stop_position_rad", Range{-10, 10}, -0.1);
 }
 
-void read_channels(const ConfigNode& s, can::HandAdapterConfig& a) {
+void read_channels(const ConfigNode& s, HandAdapterConfig& a) {
   const auto ticks = read_motor_list(s, "ticks_per_rev", Range{1, 1e9}, 4096);
   const auto gear = read_motor_list(s, "gear_ratio", Range{1e-3, 1e5}, 100);
   const auto sign = read_motor_list(s, "sign", Range{-1, 1}, 1);
@@ -61,7 +59,7 @@ void read_channels(const ConfigNode& s, can::HandAdapterConfig& a) {
 HandNodeConfig parse_hand_config(const ConfigNode& root) {
   const ConfigNode s = root.child("hand");
   HandNodeConfig c;
-  can::HandAdapterConfig& a = c.adapter;
+  HandAdapterConfig& a = c.adapter;
   c.interface = s.get_string("interface");
   a.cycle_rate_hz = root.child("node").get_double("rate_hz", Range{1, 10000});
   a.bitrate_bps = s.get_double("bitrate_bps", Range{10e3, 1e6}, a.bitrate_bps);
@@ -87,7 +85,7 @@ HandNodeConfig parse_hand_config(const ConfigNode& root) {
   try {
     can::VirtualCanBus bus(1);
     auto endpoint = bus.open();
-    can::HandAdapter check(*endpoint, a);
+    HandAdapter check(*endpoint, a);
   } catch (const std::invalid_argument& e) {
     throw root.error("hand", e.what());
   }

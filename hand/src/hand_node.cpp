@@ -18,16 +18,16 @@ namespace teleop::hand {
 namespace {
 
 // the adapter's fault bits are the IDL's, so HandState carries them unchanged
-static_assert(can::hand_fault::kEmcy == msg::HAND_FAULT_EMCY);
-static_assert(can::hand_fault::kHeartbeat == msg::HAND_FAULT_HEARTBEAT);
-static_assert(can::hand_fault::kDrive == msg::HAND_FAULT_DRIVE);
-static_assert(can::hand_fault::kLimit == msg::HAND_FAULT_LIMIT);
-static_assert(can::hand_fault::kOverCurrent == msg::HAND_FAULT_OVERCURRENT);
-static_assert(can::hand_fault::kBusOff == msg::HAND_FAULT_BUS_OFF);
-static_assert(can::hand_fault::kStalePdo == msg::HAND_FAULT_STALE_PDO);
-static_assert(can::hand_fault::kBusPassive == msg::HAND_FAULT_BUS_PASSIVE);
-static_assert(can::hand_fault::kSdo == msg::HAND_FAULT_SDO);
-static_assert(msg::HAND_MOTORS == can::kHandMotors);
+static_assert(hand_fault::kEmcy == msg::HAND_FAULT_EMCY);
+static_assert(hand_fault::kHeartbeat == msg::HAND_FAULT_HEARTBEAT);
+static_assert(hand_fault::kDrive == msg::HAND_FAULT_DRIVE);
+static_assert(hand_fault::kLimit == msg::HAND_FAULT_LIMIT);
+static_assert(hand_fault::kOverCurrent == msg::HAND_FAULT_OVERCURRENT);
+static_assert(hand_fault::kBusOff == msg::HAND_FAULT_BUS_OFF);
+static_assert(hand_fault::kStalePdo == msg::HAND_FAULT_STALE_PDO);
+static_assert(hand_fault::kBusPassive == msg::HAND_FAULT_BUS_PASSIVE);
+static_assert(hand_fault::kSdo == msg::HAND_FAULT_SDO);
+static_assert(msg::HAND_MOTORS == kHandMotors);
 
 std::unique_ptr<can::CanBus> open_socketcan(const HandNodeConfig& config) {
   can::SocketCanOptions options;
@@ -35,7 +35,7 @@ std::unique_ptr<can::CanBus> open_socketcan(const HandNodeConfig& config) {
   return std::make_unique<can::SocketCanBus>(config.interface, options);
 }
 
-can::HandAdapterConfig with_rate(can::HandAdapterConfig config, double rate_hz) {
+HandAdapterConfig with_rate(HandAdapterConfig config, double rate_hz) {
   config.cycle_rate_hz = rate_hz;
   return config;
 }
@@ -57,15 +57,15 @@ HandNode::HandNode(const HandNodeConfig& config, runtime::NodeContext& context, 
       command_(context.participant, transport::topics::kHandCommand),
       state_pub_(context.participant, transport::topics::kHandState, context.node.name),
       joints_pub_(context.participant, transport::topics::kHandJoints, context.node.name) {
-  if (const auto warning = can::bus_load_warning(adapter_.config())) spdlog::warn("{}: {}", context.node.name, *warning);
-  const can::HandBusBudget& budget = adapter_.bus_budget();
+  if (const auto warning = bus_load_warning(adapter_.config())) spdlog::warn("{}: {}", context.node.name, *warning);
+  const HandBusBudget& budget = adapter_.bus_budget();
   spdlog::info("{}: {} at {:.0f} Hz, bus load {:.1f} % nominal / {:.1f} % worst case", context.node.name,
                config.interface, context.node.rate_hz, budget.load.load_nominal * 100,
                budget.load.load_worst_case * 100);
   auto& joints = joints_pub_.sample();
   joints.robot("svh_hand");
   joints.arm("hand");
-  transport::presize_joint_state(joints, can::kHandJoints);
+  transport::presize_joint_state(joints, kHandJoints);
   start_up(context.node.period_ns());
   targets_.position_rad = adapter_.feedback().target_rad;
   targets_.enable = true;
@@ -75,14 +75,14 @@ HandNode::HandNode(const HandNodeConfig& config, runtime::NodeContext& context, 
 
 void HandNode::start_up(int64_t period_ns) {
   int64_t next = monotonic_now_ns();
-  can::HandPhase reported = adapter_.phase();
+  HandPhase reported = adapter_.phase();
   while (!adapter_.started()) {
     adapter_.cycle(next);
     if (adapter_.phase() != reported) {
       reported = adapter_.phase();
-      spdlog::info("hand: {}", can::to_string(reported));
+      spdlog::info("hand: {}", to_string(reported));
     }
-    if (reported == can::HandPhase::kFailed || reported == can::HandPhase::kSafeHold) {
+    if (reported == HandPhase::kFailed || reported == HandPhase::kSafeHold) {
       throw std::runtime_error(std::string("start-up failed: ") + adapter_.message());
     }
     if (runtime::shutdown_requested()) throw std::runtime_error("start-up interrupted");
@@ -93,7 +93,7 @@ void HandNode::start_up(int64_t period_ns) {
 
 void HandNode::take_command() {
   const msg::HandCommand& c = command_.latest();
-  for (size_t m = 0; m < can::kHandMotors; ++m) {
+  for (size_t m = 0; m < kHandMotors; ++m) {
     targets_.position_rad[m] = c.target_position_rad()[m];
     targets_.current_limit_a[m] = c.current_limit_a()[m];
   }
@@ -112,7 +112,7 @@ void HandNode::cycle(const CycleTick& tick) {
 }
 
 void HandNode::publish() {
-  const can::HandFeedback& fb = adapter_.feedback();
+  const HandFeedback& fb = adapter_.feedback();
   msg::HandState& s = state_pub_.sample();
   s.position_rad() = fb.position_rad;
   s.velocity_radps() = fb.velocity_radps;
@@ -122,21 +122,21 @@ void HandNode::publish() {
   s.faults() = fb.faults;
   state_pub_.publish();
 
-  const can::HandJointVector q = adapter_.joint_positions();
+  const HandJointVector q = adapter_.joint_positions();
   msg::JointState& j = joints_pub_.sample();
   std::copy(q.begin(), q.end(), j.q_rad().begin());
-  const can::HandJointVector dq = adapter_.joint_velocities();
+  const HandJointVector dq = adapter_.joint_velocities();
   std::copy(dq.begin(), dq.end(), j.dq_radps().begin());
   joints_pub_.publish();
 }
 
 msg::NodeState HandNode::state() const {
   switch (adapter_.phase()) {
-    case can::HandPhase::kOperational:
+    case HandPhase::kOperational:
       return msg::STATE_RUNNING;
-    case can::HandPhase::kSafeHold:
+    case HandPhase::kSafeHold:
       return msg::STATE_SAFE_HOLD;
-    case can::HandPhase::kFailed:
+    case HandPhase::kFailed:
       return msg::STATE_FAULT;
     default:
       return msg::STATE_STARTING;
@@ -145,12 +145,12 @@ msg::NodeState HandNode::state() const {
 
 void HandNode::active_faults(std::vector<uint32_t>& faults) const {
   const auto& f = adapter_.feedback().faults;
-  constexpr uint32_t kMomentary = can::hand_fault::kLimit | can::hand_fault::kOverCurrent;
+  constexpr uint32_t kMomentary = hand_fault::kLimit | hand_fault::kOverCurrent;
   if (std::any_of(f.begin(), f.end(), [](uint32_t bits) { return (bits & ~kMomentary) != 0; })) {
     faults.push_back(msg::FAULT_HARDWARE);
   }
   if (command_stale_) faults.push_back(msg::FAULT_STALE_INPUT);
-  const can::HandAdapterStats& s = adapter_.stats();
+  const HandAdapterStats& s = adapter_.stats();
   if (s.clamped_commands + s.rejected_commands > 0) faults.push_back(msg::FAULT_COMMAND_REJECTED);
 }
 
@@ -158,7 +158,7 @@ void HandNode::fill_report(runtime::NodeReport& report) const {
   report.add(command_);
   report.add(state_pub_);
   report.add(joints_pub_);
-  const can::HandAdapterStats& s = adapter_.stats();
+  const HandAdapterStats& s = adapter_.stats();
   const std::pair<const char*, uint64_t> counters[] = {
       {"hand_cycles", s.cycles},           {"hand_syncs_sent", s.syncs_sent},
       {"hand_tpdos_received", s.tpdos_received}, {"hand_send_failures", s.send_failures},

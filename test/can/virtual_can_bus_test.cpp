@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "allocation_counter.h"
-#include "teleop/can/bus_load.h"
 #include "teleop/can/cia301.h"
 
 namespace teleop::can {
@@ -164,34 +163,6 @@ TEST(VirtualCanBus, ClosedEndpointLeavesTheBus) {
     survivor = temporary.open("survivor");
   }
   EXPECT_EQ(survivor->send(frame(0x100)), CanStatus::kOk);
-}
-
-TEST(VirtualCanBus, CountsTheBitsOfEverythingSent) {
-  VirtualCanBus bus;
-  auto tx = bus.open("tx");
-  auto rx = bus.open("rx");
-  // one cycle of the chosen hand plan: SYNC, 4 packed RPDOs, 1 short RPDO, 9 TPDOs
-  ASSERT_EQ(tx->send(*encode_sync()), CanStatus::kOk);
-  CanFrame f;
-  f.dlc = 8;
-  for (int i = 0; i < 4; ++i) {
-    f.id = 0x301 + 2 * i;
-    ASSERT_EQ(tx->send(f), CanStatus::kOk);
-  }
-  f.dlc = 4;
-  f.id = 0x309;
-  ASSERT_EQ(tx->send(f), CanStatus::kOk);
-  f.dlc = 8;
-  for (int node = 1; node <= 9; ++node) {
-    f.id = 0x180 + node;
-    ASSERT_EQ(tx->send(f), CanStatus::kOk);
-  }
-  HandBusPlan plan;
-  const HandBusBudget budget = hand_bus_budget(plan);
-  const VirtualBusTraffic traffic = bus.traffic();
-  EXPECT_EQ(traffic.frames, budget.frames_per_cycle);
-  EXPECT_EQ(traffic.bits_nominal, budget.bits_per_cycle_nominal);
-  EXPECT_EQ(traffic.bits_worst_case, budget.bits_per_cycle_worst_case);
 }
 
 TEST(VirtualCanBus, ConcurrentSendersLoseNothingAndKeepTheirOwnOrder) {

@@ -15,17 +15,18 @@
 #include <thread>
 #include <vector>
 
-#include "teleop/can/emulated_drive.h"
-#include "teleop/can/hand_adapter.h"
-#include "teleop/can/hand_drive_objects.h"
 #include "teleop/can/socketcan_bus.h"
+#include "teleop/hand/emulated_drive.h"
+#include "teleop/hand/hand_adapter.h"
+#include "teleop/hand/hand_drive_objects.h"
 #include "vcan_support.h"
 
-namespace teleop::can {
+namespace teleop::hand {
 namespace {
 
-using test::cansend;
-using test::iface;
+using namespace can;  // the CANopen core the hand is built on
+using can::test::cansend;
+using can::test::iface;
 
 int64_t monotonic_ns() {
   timespec t{};
@@ -403,4 +404,4 @@ TEST(HandAdapterVcan, CandumpSeesSyncAndPdosOnTheConfiguredSchedule) {
 }
 
 }  // namespace
-}  // namespace teleop::can
+}  // namespace teleop::hand

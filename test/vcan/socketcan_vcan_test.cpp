@@ -17,8 +17,8 @@
 #include <thread>
 
 #include "teleop/can/cia301.h"
-#include "teleop/can/emulated_drive.h"
 #include "teleop/can/socketcan_bus.h"
+#include "teleop/hand/emulated_drive.h"
 #include "vcan_support.h"
 
 namespace teleop::can {
@@ -27,6 +27,8 @@ namespace {
 using namespace std::chrono_literals;
 
 using test::iface;
+using hand::EmulatedDrive;
+using hand::EmulatedDriveConfig;
 
 CanFrame frame(uint32_t id, std::initializer_list<uint8_t> bytes) {
   CanFrame f;

@@ -1,6 +1,6 @@
 #pragma once
 // Bus-load arithmetic for classic CAN (ISO 11898-1), so a configuration can be checked before
-// it runs and the adapter can warn above 70 %. See docs/can_bus_budget.md for the hand's plan.
+// it runs and a master can warn above 70 %. docs/can_bus_budget.md applies it to a whole bus plan.
 //
 // Bits of one data frame with n data bytes, including the 3-bit intermission:
 //   standard (11-bit id): 47 + 8n      (SOF 1, id 11, RTR 1, IDE 1, r0 1, DLC 4, data 8n,
@@ -52,36 +52,5 @@ struct BusLoad {
 
 /// Load of the sum of several periodic streams on a bus of `bitrate_bps`.
 BusLoad bus_load(std::span<const Traffic> traffic, double bitrate_bps);
-
-/// The hand's cyclic CANopen traffic: per cycle one SYNC, the motors' target positions packed
-/// `motors_per_rpdo` to a frame (ceil(motors / motors_per_rpdo) RPDOs, the last one possibly
-/// shorter), one TPDO of `tpdo_bytes` per motor; plus each node's heartbeat.
-struct HandBusPlan {
-  uint32_t motors = 9;
-  double cycle_rate_hz = 250.0;
-  double bitrate_bps = 1e6;
-  bool sync = true;
-  uint32_t sync_bytes = 0;            // 0, or 1 with the SYNC counter
-  uint32_t rpdo_bytes_per_motor = 4;  // target position, INTEGER32
-  uint32_t motors_per_rpdo = 2;       // one frame carries two motors' targets (dummy mapping)
-  uint32_t tpdo_bytes = 8;            // position actual 4 + current actual 2 + statusword 2
-  double heartbeat_hz = 10.0;         // per node; 0 = none
-};
-
-struct HandBusBudget {
-  uint32_t frames_per_cycle = 0;
-  uint32_t bits_per_cycle_nominal = 0;
-  uint32_t bits_per_cycle_worst_case = 0;
-  /// Time the cyclic frames occupy the bus per cycle, worst case [s].
-  double cycle_bus_time_worst_case_s = 0.0;
-  /// Cyclic frames plus heartbeats.
-  BusLoad load;
-  /// Highest cycle rate whose worst-case load (heartbeats included) stays at kBusLoadWarnFraction.
-  double max_cycle_rate_hz = 0.0;
-};
-
-/// Throws std::invalid_argument for a plan that cannot be built (no motors, non-positive rate
-/// or bitrate, more than 8 bytes in a frame, a SYNC with more than one byte).
-HandBusBudget hand_bus_budget(const HandBusPlan& plan);
 
 }  // namespace teleop::can

@@ -1,5 +1,5 @@
 #pragma once
-// CiA 402 (drives and motion control): the objects the hand uses, the controlword commands,
+// CiA 402 (drives and motion control): the objects of a position drive, the controlword commands,
 // the statusword state coding, the device state machine (PDS FSA) as a pure function, and a
 // master-side helper that walks a drive to "operation enabled" one controlword at a time.
 // Everything here is constexpr-friendly plain code: real-time safe.

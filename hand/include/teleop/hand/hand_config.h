@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "teleop/can/hand_adapter.h"
 #include "teleop/common/config.h"
+#include "teleop/hand/hand_adapter.h"
 
 namespace teleop::hand {
 
@@ -12,7 +12,7 @@ struct HandNodeConfig {
   /// SocketCAN interface of the hand's bus (can0, vcan0).
   std::string interface = "vcan0";
   /// Everything the adapter needs; cycle_rate_hz is the node's rate_hz.
-  can::HandAdapterConfig adapter;
+  HandAdapterConfig adapter;
   /// No HandCommand for this long: the hand holds its last targets and the node reports stale input.
   double command_timeout_s = 0.1;
 };

@@ -1,5 +1,5 @@
 #pragma once
-// The hand node: runs the CANopen adapter (teleop::can::HandAdapter) on the hand's CAN bus at
+// The hand node: runs the CANopen adapter (teleop::HandAdapter) on the hand's CAN bus at
 // the node's rate, takes HandCommand from DDS and publishes HandState, the 20 joint angles and
 // (through the runner) NodeStatus with the faults.
 //
@@ -15,7 +15,7 @@
 #include <teleop/msg/hand.h>
 
 #include "teleop/can/can_bus.h"
-#include "teleop/can/hand_adapter.h"
+#include "teleop/hand/hand_adapter.h"
 #include "teleop/hand/hand_config.h"
 #include "teleop/runtime/node_runner.h"
 #include "teleop/transport/publication.h"
@@ -38,7 +38,7 @@ class HandNode final : public runtime::NodeLogic {
   void active_faults(std::vector<uint32_t>& faults) const override;
   void fill_report(runtime::NodeReport& report) const override;
 
-  const can::HandAdapter& adapter() const { return adapter_; }
+  const HandAdapter& adapter() const { return adapter_; }
 
  private:
   void start_up(int64_t period_ns);
@@ -47,11 +47,11 @@ class HandNode final : public runtime::NodeLogic {
 
   HandNodeConfig config_;
   std::unique_ptr<can::CanBus> bus_;
-  can::HandAdapter adapter_;
+  HandAdapter adapter_;
   transport::Subscription<msg::HandCommand> command_;
   transport::Publication<msg::HandState> state_pub_;
   transport::Publication<msg::JointState> joints_pub_;
-  can::HandTargets targets_;
+  HandTargets targets_;
   bool command_stale_ = true;
 };
 

@@ -1,0 +1,42 @@
+#pragma once
+// What an EmulatedDrive is made of: one object per responsibility, built once, in dependency
+// order, each given references to the parts it works with.
+
+#include "cia402_device.h"
+#include "drive_link.h"
+#include "fault_injection.h"
+#include "motor_model.h"
+#include "nmt_slave.h"
+#include "object_dictionary.h"
+#include "pdo_engine.h"
+#include "sdo_server.h"
+#include "servo_controller.h"
+#include "teleop/hand/emulated_drive.h"
+
+namespace teleop::hand {
+
+struct EmulatedDrive::Parts {
+  /// `config` and `now_ns` are the drive's own: the parts read them (and SDO writes the gains).
+  Parts(can::CanBus& bus, EmulatedDriveConfig& config, const int64_t& now_ns)
+      : link(bus),
+        motor(config.motor, config.initial_position_rad, config.control.substep_s),
+        servo(config.control, config.motor.supply_v, motor.measured_rad()),
+        nmt(config.node_id, config.heartbeat_ms, link),
+        device(config, servo, motor, nmt),
+        faults(link),
+        pdos(link, faults, nmt, device),
+        objects({config, nmt, pdos, device, servo, motor, faults, now_ns}),
+        sdo(config.node_id, link, nmt, faults) {}
+
+  drive::DriveLink link;
+  drive::MotorModel motor;
+  drive::ServoController servo;
+  drive::NmtSlave nmt;
+  drive::Cia402Device device;
+  drive::FaultInjection faults;
+  drive::PdoEngine pdos;
+  drive::ObjectDictionary objects;
+  drive::SdoServer sdo;
+};
+
+}  // namespace teleop::hand
