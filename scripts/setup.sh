@@ -13,7 +13,7 @@ packages=(
   openssl libssl-dev tcpdump
   # vcan HIL harness (test/vcan/run_in_vm.sh): a qemu VM with Debian's kernel and a busybox initramfs
   qemu-system-x86 busybox-static cpio
-  # libFuzzer target of the CAN frame decoders (test/can/fuzz): clang and its fuzzer runtime
+  # libFuzzer target of the CAN frame decoders (test/hand/fuzz): clang and its fuzzer runtime
   clang libclang-rt-14-dev
 )
 

@@ -21,10 +21,11 @@ struct ProcessTrace {
 };
 
 // a node still starting holds too: it has not been given anything to follow
+bool is_state(double traced, msg::NodeState state) { return traced == static_cast<double>(state); }
 bool safe(double state) {
-  return state == msg::STATE_STARTING || state == msg::STATE_SAFE_HOLD || state == msg::STATE_FAULT;
+  return is_state(state, msg::STATE_STARTING) || is_state(state, msg::STATE_SAFE_HOLD) || is_state(state, msg::STATE_FAULT);
 }
-bool running(double state) { return state == msg::STATE_RUNNING; }
+bool running(double state) { return is_state(state, msg::STATE_RUNNING); }
 
 // the trace of `node`'s process that was looping at `t_s`
 const ProcessTrace* alive_at(const std::vector<ProcessTrace>& traces, const std::string& node, double t_s) {
