@@ -8,6 +8,8 @@ packages=(
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools default-jre-headless
   libmujoco-dev libqhull-dev libeigen3-dev libyaml-cpp-dev libspdlog-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  # recordings of the bus (bag/, docs/recording.md): SQLite, and its shell to look into a bag
+  libsqlite3-dev sqlite3
   can-utils iproute2
   # multi-host and security tests (test/netns): namespaces, the PKI script, packet capture
   openssl libssl-dev tcpdump
