@@ -271,6 +271,10 @@ void FollowerNode::cycle(const CycleTick& tick) {
   publish_state();
 }
 
+void FollowerNode::fill_status(msg::NodeStatus& status) const {
+  if (tdpa_) status.tdpa_energy_j(tdpa_->observed_energy_j());
+}
+
 void FollowerNode::active_faults(std::vector<uint32_t>& faults) const {
   if (hardware_faults_ > 0) faults.push_back(msg::FAULT_HARDWARE);
   if (reflex_.latched()) {

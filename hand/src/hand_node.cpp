@@ -143,6 +143,10 @@ msg::NodeState HandNode::state() const {
   }
 }
 
+void HandNode::fill_status(msg::NodeStatus& status) const {
+  status.can_bus_state(can::to_string(bus_->state()));
+}
+
 void HandNode::active_faults(std::vector<uint32_t>& faults) const {
   const auto& f = adapter_.feedback().faults;
   constexpr uint32_t kMomentary = hand_fault::kLimit | hand_fault::kOverCurrent;

@@ -10,24 +10,10 @@
 #include "teleop/transport/publication.h"
 
 namespace teleop::launcher {
-namespace {
-
-transport::ParticipantConfig tool_transport(const ResetOptions& options) {
-  transport::ParticipantConfig config;
-  if (!options.config_path.empty()) {
-    // the node's own transport section, so the request travels as its commands do
-    const ConfigNode root = ConfigNode::load_file(options.config_path);
-    config = transport::parse_participant_config(root.child("transport"), "teleop_reset");
-  }
-  config.name = "teleop_reset";
-  if (options.domain_id) config.domain_id = *options.domain_id;
-  return config;
-}
-
-}  // namespace
 
 bool send_reset(const ResetOptions& options) {
-  transport::Participant participant(tool_transport(options));
+  transport::Participant participant(
+      transport::tool_participant_config(options.config_path, options.domain_id, "teleop_reset"));
   transport::Publication<msg::ResetRequest> request(participant, transport::topics::kResetRequest, "teleop_reset");
   request.sample().target(options.target);
   const int64_t deadline_ns = monotonic_now_ns() + static_cast<int64_t>(options.timeout_s * 1e9);

@@ -268,6 +268,10 @@ void LeaderNode::cycle(const CycleTick& tick) {
   update_trace_values();
 }
 
+void LeaderNode::fill_status(msg::NodeStatus& status) const {
+  if (tdpa_) status.tdpa_energy_j(tdpa_->observed_energy_j());
+}
+
 void LeaderNode::active_faults(std::vector<uint32_t>& faults) const {
   if (state_ == msg::STATE_SAFE_HOLD) faults.push_back(msg::FAULT_PEER_LOST);
   if (device_faults_ > 0) faults.push_back(msg::FAULT_HARDWARE);

@@ -14,6 +14,7 @@
 #include "teleop/runtime/realtime.h"
 #include "teleop/runtime/shutdown_signal.h"
 #include "teleop/runtime/status_names.h"
+#include "flow_watch.h"
 #include "status_publisher.h"
 #include "teleop/runtime/trace_recorder.h"
 #include "trace_stream.h"
@@ -175,6 +176,7 @@ int run(const CommandLine& cli, const NodeDescription& description) {
     trace = make_trace_recorder(cli, node, *logic);
     if (trace && cli.trace_stream) stream = std::make_unique<TraceStream>(*trace, cli.trace_path);
     StatusPublisher status(participant, node.name, description.role, node.rate_hz, node.status_rate_hz);
+    const FlowWatch flow_watch(participant, node.name, setup.transport.domain_id);
     MonotonicClock clock;
     RatePacer pacer(clock, node.period_ns(), node.max_catch_up_cycles);
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "teleop/common/clock.h"
+
 namespace teleop::runtime {
 
 StatusPublisher::StatusPublisher(transport::Participant& participant, const std::string& node_name,
@@ -16,6 +18,32 @@ StatusPublisher::StatusPublisher(transport::Participant& participant, const std:
   faults_.reserve(msg::MAX_FAULTS);
   publication_.sample().fault_codes().reserve(msg::MAX_FAULTS);
   publication_.sample().links().reserve(msg::MAX_LINKS);
+  init_flows(participant);
+}
+
+// the flows' names are set once here; each status then only updates numbers (no allocation)
+void StatusPublisher::init_flows(const transport::Participant& participant) {
+  for (const transport::ReaderFlow& flow : participant.reader_flows()) {
+    if (flows_.size() == msg::MAX_FLOWS) break;
+    flows_.push_back(flow.status);
+    publication_.sample().flows().emplace_back();
+    publication_.sample().flows().back().topic(flow.topic);
+  }
+}
+
+void StatusPublisher::fill_flows() {
+  auto& out = publication_.sample().flows();
+  const int64_t now_ns = monotonic_now_ns();
+  for (size_t i = 0; i < flows_.size(); ++i) {
+    const transport::EndpointStatus& status = *flows_[i];
+    msg::FlowStatus& f = out[i];
+    f.writers(status.matched.load(std::memory_order_relaxed));
+    f.received(status.received.load(std::memory_order_relaxed));
+    f.lost(status.lost.load(std::memory_order_relaxed));
+    f.latency_ns(status.latency_ns.load(std::memory_order_relaxed));
+    const int64_t last = status.last_data_mono_ns.load(std::memory_order_relaxed);
+    f.age_ns(last == 0 ? -1 : now_ns - last);
+  }
 }
 
 void StatusPublisher::fill_links() {
@@ -60,6 +88,9 @@ void StatusPublisher::publish(msg::NodeState state, const NodeLogic& logic, cons
   l.lateness_p99_ns(loop.lateness.percentile_ns(0.99));
   l.lateness_max_ns(loop.lateness.max_ns());
   fill_links();
+  fill_flows();
+  s.tdpa_energy_j(std::nan(""));
+  logic.fill_status(s);
   publication_.publish();
 }
 

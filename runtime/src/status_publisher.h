@@ -25,12 +25,15 @@ class StatusPublisher {
   void publish_stopping(const NodeLogic& logic, const PacerStats& loop, int64_t timeout_ns);
 
  private:
+  void init_flows(const transport::Participant& participant);
   void fill_links();
+  void fill_flows();
 
   const transport::impairment::ImpairmentEngine* impairment_;
   std::vector<transport::impairment::ImpairmentEngine::Snapshot> links_;
   transport::Publication<msg::NodeStatus> publication_;
   std::vector<uint32_t> faults_;
+  std::vector<const transport::EndpointStatus*> flows_;
   uint64_t cycles_per_status_;
 };
 

@@ -11,14 +11,20 @@
 #include <fastdds/dds/publisher/DataWriterListener.hpp>
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <mutex>
 #include <stdexcept>
 
 #include <spdlog/spdlog.h>
 
+#include "teleop/common/clock.h"
+#include "discovery_listener.h"
 #include "impairment/impairing_transport.h"
+#include "raw_payload_type.h"
 #include "teleop/transport/qos.h"
 #include "security_files.h"
 
@@ -38,10 +44,12 @@ struct Participant::WriterListener : dds::DataWriterListener {
 };
 
 struct Participant::ReaderListener : dds::DataReaderListener {
+  std::string topic;
   EndpointStatus status;
   TakeFunction take;               // set in callback mode only
   std::shared_ptr<void> keep_alive;  // the sample buffer the callback takes into
   void on_data_available(dds::DataReader* reader) override {
+    status.last_data_mono_ns.store(monotonic_now_ns(), std::memory_order_relaxed);
     if (take) take(reader);
   }
   void on_subscription_matched(dds::DataReader*, const dds::SubscriptionMatchedStatus& s) override {
@@ -60,23 +68,6 @@ struct Participant::ReaderListener : dds::DataReaderListener {
 };
 
 // tells the impairment where each peer listens, so a destination maps to its link
-struct Participant::DiscoveryListener : dds::DomainParticipantListener {
-  std::shared_ptr<impairment::ImpairmentEngine> engine;
-  void on_participant_discovery(dds::DomainParticipant*, eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override {
-    using Status = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo;
-    const std::string name = info.info.m_participantName.to_string();
-    if (info.status == Status::REMOVED_PARTICIPANT || info.status == Status::DROPPED_PARTICIPANT) {
-      engine->peers().remove(name);
-      return;
-    }
-    std::vector<Locator_t> locators;
-    for (const auto& l : info.info.default_locators.unicast) locators.push_back(l);
-    for (const auto& l : info.info.default_locators.multicast) locators.push_back(l);
-    for (const auto& l : info.info.metatraffic_locators.unicast) locators.push_back(l);
-    engine->peers().add(name, locators);
-  }
-};
-
 namespace {
 
 Locator_t peer_locator(const std::string& peer) {
@@ -125,6 +116,9 @@ dds::DomainParticipantQos participant_qos(const ParticipantConfig& config,
                                           const std::shared_ptr<impairment::ImpairmentEngine>& engine) {
   dds::DomainParticipantQos qos = dds::PARTICIPANT_QOS_DEFAULT;
   qos.name(config.name);
+  // the tools show which host each node runs on
+  char host[256] = {};
+  if (gethostname(host, sizeof(host) - 1) == 0) qos.properties().properties().emplace_back(kHostProperty, host, true);
   qos.transport().use_builtin_transports = false;
   // impaired traffic must all go through the chaining transport: shared memory would bypass it
   if (config.shm && !engine) {
@@ -176,18 +170,17 @@ void disable_intraprocess_delivery() {
 
 }  // namespace
 
-Participant::Participant(const ParticipantConfig& config) : config_(config) {
+Participant::Participant(const ParticipantConfig& config, DiscoveryObserver* observer) : config_(config) {
   disable_intraprocess_delivery();
   dds::StatusMask mask = dds::StatusMask::none();
   if (config.impairment.enabled()) {
     if (!config.udpv4) throw std::runtime_error("network impairment needs the udpv4 transport");
     impairment_ = std::make_shared<impairment::ImpairmentEngine>(config.impairment, config.name);
-    discovery_listener_ = std::make_unique<DiscoveryListener>();
-    discovery_listener_->engine = impairment_;
     spdlog::info("{}: impairing outgoing traffic (seed {}{}), shared memory off so nothing bypasses it", config.name,
                  config.impairment.seed, config.impairment.exclude_discovery ? ", discovery unimpaired" : "");
     for (const auto& l : config.impairment.links) spdlog::info("{}: link to {}: profile {}", config.name, l.to, l.profile.name);
   }
+  if (impairment_ || observer) discovery_listener_ = std::make_unique<DiscoveryListener>(impairment_, observer);
   if (config.security.enabled()) verify_security_files(config.security);
   auto* factory = dds::DomainParticipantFactory::get_instance();
   participant_ = factory->create_participant(static_cast<dds::DomainId_t>(config.domain_id),
@@ -244,19 +237,53 @@ std::pair<dds::DataWriter*, const EndpointStatus*> Participant::create_writer(co
   return {writer, status};
 }
 
-std::pair<dds::DataReader*, const EndpointStatus*> Participant::create_reader(const std::string& topic,
-                                                                              const std::string& type_name,
-                                                                              QosPreset preset, TakeFunction take,
-                                                                              std::shared_ptr<void> keep_alive) {
+std::pair<dds::DataReader*, EndpointStatus*> Participant::create_reader(const std::string& topic,
+                                                                        const std::string& type_name, QosPreset preset,
+                                                                        TakeFunction take,
+                                                                        std::shared_ptr<void> keep_alive) {
   auto listener = std::make_unique<ReaderListener>();
+  listener->topic = topic;
   listener->take = std::move(take);
   listener->keep_alive = std::move(keep_alive);
   dds::DataReader* reader =
       subscriber_->create_datareader(topic_for(topic, type_name), reader_qos(preset, config_), listener.get());
   if (reader == nullptr) throw std::runtime_error("DDS refused to create a reader on " + topic);
-  const EndpointStatus* status = &listener->status;
+  EndpointStatus* status = &listener->status;
   reader_listeners_.push_back(std::move(listener));
   return {reader, status};
+}
+
+void Participant::make_raw_reader(const std::string& topic, const SampleType& type, QosPreset qos,
+                                  RawSampleCallback on_sample) {
+  auto sample = std::make_shared<RawSample>();
+  auto take = [sample, cb = std::move(on_sample)](dds::DataReader* r) {
+    dds::SampleInfo info;
+    while (r->take_next_sample(&sample->cdr, &info) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+      if (!info.valid_data) continue;
+      sample->reception_ns = info.reception_timestamp.to_ns();
+      std::memcpy(sample->writer.bytes.data(), info.publication_handle.value, sample->writer.bytes.size());
+      cb(*sample);
+    }
+  };
+  (void)create_reader(topic, register_type_support(dds::TypeSupport(new RawPayloadType(type))), qos, std::move(take),
+                      sample);
+}
+
+RawWriter Participant::make_raw_writer(const std::string& topic, const SampleType& type, QosPreset qos) {
+  auto [writer, status] = create_writer(topic, register_type_support(dds::TypeSupport(new RawPayloadType(type))), qos);
+  return RawWriter(writer, status);
+}
+
+ParticipantId Participant::id() const {
+  ParticipantId id{};
+  std::memcpy(id.data(), participant_->guid().guidPrefix.value, id.size());
+  return id;
+}
+
+std::vector<ReaderFlow> Participant::reader_flows() const {
+  std::vector<ReaderFlow> flows;
+  for (const auto& listener : reader_listeners_) flows.push_back({listener->topic, &listener->status});
+  return flows;
 }
 
 }  // namespace teleop::transport

@@ -135,4 +135,18 @@ ParticipantConfig parse_participant_config(const ConfigNode& section, const std:
   return c;
 }
 
+ParticipantConfig tool_participant_config(const std::string& node_config_path, std::optional<int> domain,
+                                          const std::string& name) {
+  ParticipantConfig config;
+  if (!node_config_path.empty()) {
+    // the node's own transport section, so the tool meets the nodes where they are
+    const ConfigNode root = ConfigNode::load_file(node_config_path);
+    config = parse_participant_config(root.child("transport"), name);
+  }
+  config.name = name;
+  config.impairment = {};  // a tool observes the network; it does not add to it
+  if (domain) config.domain_id = *domain;
+  return config;
+}
+
 }  // namespace teleop::transport

@@ -35,6 +35,7 @@ class FollowerNode final : public runtime::NodeLogic {
   void cycle(const CycleTick& tick) override;
   msg::NodeState state() const override { return state_; }
   void active_faults(std::vector<uint32_t>& faults) const override;
+  void fill_status(msg::NodeStatus& status) const override;
   void fill_report(runtime::NodeReport& report) const override;
   void trace_columns(std::vector<std::string>& columns) const override;
   void trace_row(double* row) const override;

@@ -36,6 +36,7 @@ class HandNode final : public runtime::NodeLogic {
   void cycle(const CycleTick& tick) override;
   msg::NodeState state() const override;
   void active_faults(std::vector<uint32_t>& faults) const override;
+  void fill_status(msg::NodeStatus& status) const override;
   void fill_report(runtime::NodeReport& report) const override;
 
   const HandAdapter& adapter() const { return adapter_; }

@@ -23,6 +23,9 @@ class NodeLogic {
   virtual msg::NodeState state() const = 0;
   /// Active fault codes (msg::FAULT_*), appended to `faults`. Real-time safe once `faults` has capacity.
   virtual void active_faults(std::vector<uint32_t>& faults) const = 0;
+  /// Adds what only this node knows to its NodeStatus (TDPA energy, the CAN bus state); the
+  /// runner has filled the rest. Real-time safe: no allocation.
+  virtual void fill_status(msg::NodeStatus& status) const { (void)status; }
   /// Adds the node's topics and counters to the final report. Called once after the loop.
   virtual void fill_report(NodeReport& report) const = 0;
 

@@ -16,6 +16,15 @@ struct EndpointStatus {
   std::atomic<uint64_t> liveliness_lost{0};
   /// Deadline periods without a sample (readers: requested, writers: offered).
   std::atomic<uint64_t> deadline_missed{0};
+
+  // What the node made of a reader's flow (readers only), for NodeStatus and the tools.
+  /// When DDS last had data for the reader (CLOCK_MONOTONIC ns, 0: never): a Fast DDS thread sets it.
+  std::atomic<int64_t> last_data_mono_ns{0};
+  /// Samples the node took, and the gaps in their sequence numbers within sessions (Subscription).
+  std::atomic<uint64_t> received{0};
+  std::atomic<uint64_t> lost{0};
+  /// One-way latency (source stamp to reception, CLOCK_REALTIME) smoothed over ~64 samples [ns].
+  std::atomic<int64_t> latency_ns{0};
 };
 
 }  // namespace teleop::transport

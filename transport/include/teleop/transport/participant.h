@@ -14,9 +14,12 @@
 #include <string>
 #include <vector>
 
+#include "teleop/transport/discovery_observer.h"
 #include "teleop/transport/impairment/impairment_engine.h"
 #include "teleop/transport/participant_config.h"
+#include "teleop/transport/raw_endpoint.h"
 #include "teleop/transport/reader.h"
+#include "teleop/transport/sample_types.h"
 #include "teleop/transport/topics.h"
 #include "teleop/transport/type_support.h"
 #include "teleop/transport/writer.h"
@@ -26,10 +29,19 @@ namespace teleop::transport {
 /// Receives every sample of a reader on a Fast DDS thread (callback mode).
 using SampleCallback = std::function<void(const void* sample)>;
 
+class DiscoveryListener;
+
+/// One of the participant's readers, as NodeStatus and the flow watch see it.
+struct ReaderFlow {
+  std::string topic;
+  const EndpointStatus* status = nullptr;
+};
+
 class Participant {
  public:
   /// Creates the DDS participant. Throws std::runtime_error when DDS refuses the configuration.
-  explicit Participant(const ParticipantConfig& config);
+  /// `observer` (tools; may be null) hears of every participant and endpoint discovered.
+  explicit Participant(const ParticipantConfig& config, DiscoveryObserver* observer = nullptr);
   ~Participant();
   Participant(const Participant&) = delete;
   Participant& operator=(const Participant&) = delete;
@@ -63,6 +75,18 @@ class Participant {
     return Reader<T>(reader, status);
   }
 
+  /// Tools: a reader of `topic` that hands every sample over as its serialized bytes, on a Fast
+  /// DDS thread. The participant must not also have a typed endpoint of the same type.
+  void make_raw_reader(const std::string& topic, const SampleType& type, QosPreset qos, RawSampleCallback on_sample);
+  /// Tools: a writer of serialized samples of `type` on `topic`.
+  RawWriter make_raw_writer(const std::string& topic, const SampleType& type, QosPreset qos);
+
+  /// Every reader created so far, in creation order. Setup time (allocates).
+  std::vector<ReaderFlow> reader_flows() const;
+
+  /// This participant's GUID prefix (what its own endpoints are known by in discovery).
+  ParticipantId id() const;
+
   const ParticipantConfig& config() const { return config_; }
   /// The impairment of outgoing traffic; null when none is configured.
   const impairment::ImpairmentEngine* impairment() const { return impairment_.get(); }
@@ -71,7 +95,6 @@ class Participant {
  private:
   struct WriterListener;
   struct ReaderListener;
-  struct DiscoveryListener;
   using TakeFunction = std::function<void(eprosima::fastdds::dds::DataReader*)>;
 
   template <typename T>
@@ -84,7 +107,7 @@ class Participant {
   std::pair<eprosima::fastdds::dds::DataWriter*, const EndpointStatus*> create_writer(const std::string& topic,
                                                                                       const std::string& type_name,
                                                                                       QosPreset preset);
-  std::pair<eprosima::fastdds::dds::DataReader*, const EndpointStatus*> create_reader(
+  std::pair<eprosima::fastdds::dds::DataReader*, EndpointStatus*> create_reader(
       const std::string& topic, const std::string& type_name, QosPreset preset, TakeFunction take,
       std::shared_ptr<void> keep_alive);
 

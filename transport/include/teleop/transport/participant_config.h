@@ -2,6 +2,7 @@
 // How a node joins the DDS domain: domain, transports, peers, leases.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,13 @@ struct ParticipantConfig {
 
 /// Reads the `transport:` section. Throws ConfigError naming file and key.
 ParticipantConfig parse_participant_config(const ConfigNode& section, const std::string& default_name);
+
+/// How a tool (`teleop topic`, `monitor`, `record`, `reset`, ...) joins the nodes' bus: the
+/// transport section of the node config at `node_config_path` (domain, discovery, peers,
+/// security) when one is given, the defaults otherwise, without the node's impairment; `domain`
+/// overrides. Throws ConfigError naming file and key.
+ParticipantConfig tool_participant_config(const std::string& node_config_path, std::optional<int> domain,
+                                          const std::string& name);
 
 /// Name of a discovery mode as written in YAML.
 const char* discovery_mode_name(DiscoveryMode mode);

@@ -15,7 +15,7 @@ template <typename T>
 class Reader {
  public:
   Reader() = default;
-  Reader(eprosima::fastdds::dds::DataReader* reader, const EndpointStatus* status) : reader_(reader), status_(status) {}
+  Reader(eprosima::fastdds::dds::DataReader* reader, EndpointStatus* status) : reader_(reader), status_(status) {}
 
   /// Non-blocking: moves the oldest unread sample into `out`, the time DDS received it
   /// (CLOCK_REALTIME ns) into `reception_ns` and the DataWriter that wrote it into `writer`.
@@ -62,9 +62,17 @@ class Reader {
   }
   bool valid() const { return reader_ != nullptr; }
 
+  /// Publishes what the node made of the flow (received, lost, smoothed latency) for NodeStatus
+  /// and the tools. Real-time safe (relaxed atomic stores).
+  void report_flow(uint64_t received, uint64_t lost, int64_t latency_ns) {
+    status_->received.store(received, std::memory_order_relaxed);
+    status_->lost.store(lost, std::memory_order_relaxed);
+    status_->latency_ns.store(latency_ns, std::memory_order_relaxed);
+  }
+
  private:
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
-  const EndpointStatus* status_ = nullptr;
+  EndpointStatus* status_ = nullptr;
 };
 
 }  // namespace teleop::transport

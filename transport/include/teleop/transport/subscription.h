@@ -36,6 +36,7 @@ class Subscription {
       if (admission == Admission::kNewSession) tracker_.begin_session();
       // latency of the transport itself: source stamp to DDS reception, not to this poll
       tracker_.on_sample(header.seq(), header.stamp_ns(), reception_ns);
+      smooth_latency(reception_ns - header.stamp_ns());
       if (is_newest(admission)) {
         // swap, not copy: both buffers keep their capacity, nothing is allocated
         std::swap(latest_, incoming_);
@@ -46,6 +47,7 @@ class Subscription {
     }
     // what the loop works with: how old the newest sample is now
     if (has_sample_) age_.record(system_now_ns() - latest_.header().stamp_ns());
+    reader_.report_flow(tracker_.received(), tracker_.lost(), latency_smoothed_ns_);
     return newest;
   }
 
@@ -69,6 +71,11 @@ class Subscription {
   const Reader<T>& reader() const { return reader_; }
 
  private:
+  // an exponential average over ~64 samples: what NodeStatus shows as the flow's latency now
+  void smooth_latency(int64_t latency_ns) {
+    latency_smoothed_ns_ = tracker_.received() == 1 ? latency_ns : latency_smoothed_ns_ + (latency_ns - latency_smoothed_ns_) / 64;
+  }
+
   std::string topic_name_;
   Reader<T> reader_;
   StreamSession session_;
@@ -79,6 +86,7 @@ class Subscription {
   int64_t latest_receive_mono_ns_ = 0;
   SequenceTracker tracker_;
   DurationHistogram age_;
+  int64_t latency_smoothed_ns_ = 0;
 };
 
 }  // namespace teleop::transport

@@ -1,0 +1,103 @@
+#include "bus_commands.h"
+
+#include <unistd.h>
+
+#include "teleop/runtime/shutdown_signal.h"
+
+BusCommands::BusCommands(CLI::App& app) : app_(&app) {
+  CLI::App* topic = app.add_subcommand("topic", "the topics on the bus: list, info, echo, hz");
+  topic->require_subcommand(1);
+  list_ = topic->add_subcommand("list", "every topic with its type and the number of writers and readers");
+  list_->add_flag("-v,--verbose", verbose_, "also the nodes that write and read each topic");
+  info_ = topic->add_subcommand("info", "one topic: its type, each writer and reader with node, host and QoS");
+  info_->add_option("topic", topic_, "topic name, e.g. teleop/leader/joint_command")->required();
+  echo_ = topic->add_subcommand("echo", "print the samples of a topic as YAML");
+  echo_->add_option("topic", echo_options_.topic, "topic name")->required();
+  echo_->add_option("--field", echo_options_.field, "print only this field, a dotted path (header.seq, q_rad, links[0].peer)");
+  echo_->add_flag("--once", [this](int64_t) { echo_options_.count = 1; }, "print one sample and exit");
+  echo_->add_option("-n,--count", echo_options_.count, "print this many samples and exit");
+  hz_ = topic->add_subcommand("hz", "rate, period spread, sample age and loss of a topic, once a second");
+  hz_->add_option("topic", hz_options_.topic, "topic name")->required();
+  hz_->add_option("-w,--window", hz_options_.window, "arrivals the statistics are computed over (default 1000)")
+      ->check(CLI::Range(2, 1'000'000));
+  hz_->add_option("-n,--count", hz_options_.count, "stop after this many samples");
+  hz_->add_option("-d,--duration", hz_options_.duration_s, "stop after this many seconds")->check(CLI::PositiveNumber);
+  for (CLI::App* c : {list_, info_, echo_, hz_}) add_bus_options(c);
+
+  monitor_ = app.add_subcommand("monitor", "a live view of every node on the bus: state, faults, loop, flows, links");
+  monitor_->add_option("--refresh", monitor_options_.refresh_s, "seconds between refreshes (default 1)")
+      ->check(CLI::Range(0.1, 60.0));
+  monitor_->add_option("-d,--duration", monitor_options_.duration_s, "stop after this many seconds")
+      ->check(CLI::PositiveNumber);
+  monitor_->add_flag("--lines,!--screen", lines_,
+                     "one line per node per refresh (default when the output is not a terminal) or a redrawn screen");
+  add_bus_options(monitor_);
+  add_record();
+  add_replay();
+}
+
+void BusCommands::add_record() {
+  record_ = app_->add_subcommand("record", "record the bus (every teleop topic, or those given) into a rosbag2-layout folder");
+  record_->add_option("-o,--output", record_options_.dir, "the recording's folder (must not exist yet)")->required();
+  record_->add_option("--topics", record_options_.topics, "only these topics")->delimiter(',');
+  record_->add_option("-d,--duration", record_options_.duration_s, "stop after this many seconds")
+      ->check(CLI::PositiveNumber);
+  add_bus_options(record_);
+}
+
+void BusCommands::add_replay() {
+  replay_ = app_->add_subcommand("replay", "publish a recording again with its recorded timing");
+  replay_->add_option("recording", replay_options_.dir, "the recording's folder")->required();
+  replay_->add_option("--topics", replay_options_.topics, "only these topics")->delimiter(',');
+  replay_->add_option("--rate", replay_options_.rate, "speed factor (2: twice as fast)")->check(CLI::Range(0.01, 100.0));
+  replay_->add_flag("--loop", replay_options_.loop, "start again at the end, until interrupted");
+  replay_->add_flag("--keep-stamps", replay_options_.keep_stamps,
+                    "publish the recorded header stamps (default: restamped now, so receivers do not refuse them as stale)");
+  replay_->add_option("--wait-for-readers", replay_options_.wait_for_readers_s,
+                      "seconds to wait for a reader of every replayed topic before starting (default 5)")
+      ->check(CLI::Range(0.0, 600.0));
+  replay_->add_option("--compare", replay_options_.compare_topic,
+                      "a recorded JointState topic to compare with its live samples during the replay (RMSE)");
+  add_bus_options(replay_);
+}
+
+void BusCommands::add_bus_options(CLI::App* command) {
+  command->add_option("-c,--config", bus_.config_path, "join the bus as this node config says (domain, discovery, security)")
+      ->check(CLI::ExistingFile);
+  command->add_option("--domain", bus_.domain_id, "DDS domain id (overrides the config)")->check(CLI::Range(0, 232));
+  command->add_option("--discovery-time", bus_.discovery_s,
+                      "seconds to listen to discovery before answering or giving up on a topic (default 2)")
+      ->check(CLI::Range(0.1, 600.0));
+}
+
+std::optional<int> BusCommands::run() {
+  using namespace teleop::tools;
+  const bool any = list_->parsed() || info_->parsed() || echo_->parsed() || hz_->parsed() || monitor_->parsed() ||
+                   record_->parsed() || replay_->parsed();
+  if (!any) return std::nullopt;
+  teleop::runtime::install_shutdown_handlers();
+  if (record_->parsed()) return run_record();
+  if (replay_->parsed()) return run_replay();
+  if (list_->parsed()) return topic_list(bus_, verbose_, stdout);
+  if (info_->parsed()) return topic_info(bus_, topic_, stdout);
+  if (echo_->parsed()) return topic_echo(bus_, echo_options_, stdout);
+  if (hz_->parsed()) return topic_hz(bus_, hz_options_, stdout);
+  monitor_options_.lines = lines_.value_or(isatty(fileno(stdout)) == 0);
+  return run_monitor(bus_, monitor_options_, stdout);
+}
+
+int BusCommands::run_record() {
+  const teleop::tools::RecordResult r = teleop::tools::record(bus_, record_options_, stderr);
+  std::printf("recorded %llu samples (%.1f MB) of %zu topics in %.1f s into %s; dropped %llu (queue full), "
+              "missed upstream %llu (sequence gaps)\n",
+              static_cast<unsigned long long>(r.messages), static_cast<double>(r.bytes) * 1e-6, r.topics.size(),
+              r.seconds, record_options_.dir.c_str(), static_cast<unsigned long long>(r.dropped),
+              static_cast<unsigned long long>(r.missed));
+  return 0;
+}
+
+int BusCommands::run_replay() {
+  const teleop::tools::ReplayResult r = teleop::tools::replay(bus_, replay_options_, stderr);
+  std::printf("%s", teleop::tools::format_replay(r, replay_options_).c_str());
+  return r.published > 0 ? 0 : 1;
+}

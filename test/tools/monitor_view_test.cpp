@@ -1,0 +1,76 @@
+// What `teleop monitor` makes of the nodes' statuses.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "teleop/tools/monitor_view.h"
+
+namespace teleop::tools {
+namespace {
+
+constexpr int64_t kMs = 1'000'000;
+
+msg::NodeStatus status(const char* node, msg::NodeState state, int64_t mono_ns, uint64_t cycles) {
+  msg::NodeStatus s;
+  s.header().source(node);
+  s.header().stamp_mono_ns(mono_ns);
+  s.role(msg::ROLE_FOLLOWER);
+  s.state(state);
+  s.loop().cycles(cycles);
+  s.tdpa_energy_j(std::nan(""));
+  return s;
+}
+
+TEST(MonitorView, ShowsStateFaultsAndTheLoopRateMeasuredBetweenStatuses) {
+  MonitorView view;
+  view.update(status("follower", msg::STATE_RUNNING, 0, 1000), 0);
+  msg::NodeStatus s = status("follower", msg::STATE_SAFE_HOLD, 1000 * kMs, 1998);
+  s.fault_codes({msg::FAULT_STALE_INPUT, msg::FAULT_PEER_LOST});
+  view.update(s, 1000 * kMs);
+  const std::string line = view.lines(1000 * kMs);
+  EXPECT_NE(line.find("node=follower role=follower state=safe_hold faults=stale_input,peer_lost rate_hz=998.0"),
+            std::string::npos)
+      << line;
+  const std::string table = view.table(1000 * kMs, 60);
+  EXPECT_NE(table.find("domain 60"), std::string::npos) << table;
+  EXPECT_NE(table.find("safe_hold"), std::string::npos) << table;
+}
+
+TEST(MonitorView, SaysWhichFlowWaitsForAWriterAndHowMuchAnotherLost) {
+  MonitorView view;
+  msg::NodeStatus a = status("leader", msg::STATE_STARTING, 0, 0);
+  a.flows().resize(2);
+  a.flows()[0].topic("teleop/follower/joint_state");
+  a.flows()[0].writers(0);
+  a.flows()[0].age_ns(-1);
+  a.flows()[1].topic("teleop/twin/feedback_torque");
+  a.flows()[1].writers(1);
+  a.flows()[1].received(900);
+  a.flows()[1].lost(100);
+  view.update(a, 0);
+  msg::NodeStatus b = a;
+  b.header().stamp_mono_ns(1000 * kMs);
+  b.flows()[1].received(1890);  // +990 received, +10 lost since the last status: 1 %
+  b.flows()[1].lost(110);
+  b.flows()[1].age_ns(2 * kMs);
+  b.flows()[1].latency_ns(17 * kMs + 500'000);
+  view.update(b, 1000 * kMs);
+  const std::string table = view.table(1000 * kMs, 0);
+  EXPECT_NE(table.find("teleop/follower/joint_state"), std::string::npos) << table;
+  EXPECT_NE(table.find("WAITING FOR A WRITER  age never"), std::string::npos) << table;
+  EXPECT_NE(table.find("1 writer  age 2.00 ms  latency 17.50 ms  loss 1.0 %"), std::string::npos) << table;
+}
+
+TEST(MonitorView, ANodeWhoseStatusStopsIsShownSilent) {
+  MonitorView view(2000 * kMs);
+  view.update(status("twin", msg::STATE_RUNNING, 0, 0), 0);
+  EXPECT_NE(view.lines(1000 * kMs).find("state=running"), std::string::npos);
+  EXPECT_NE(view.lines(3500 * kMs).find("state=SILENT 3.5 s (was running)"), std::string::npos)
+      << view.lines(3500 * kMs);
+  // a node that said it stops is not silent, it is gone on purpose
+  view.update(status("twin", msg::STATE_STOPPING, 10, 0), 4000 * kMs);
+  EXPECT_NE(view.lines(9000 * kMs).find("state=stopping"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace teleop::tools

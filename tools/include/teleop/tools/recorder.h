@@ -1,0 +1,41 @@
+#pragma once
+// `teleop record -o DIR`: every teleop topic on the bus (or those chosen), as the serialized
+// samples with their receive times and writers, into a recording in rosbag2's sqlite3 layout
+// (bag/). Topics are subscribed as discovery finds them, so nodes may start after the recorder.
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "teleop/tools/topic_tools.h"
+
+namespace teleop::tools {
+
+struct RecordOptions {
+  /// The recording's folder (created; must not exist or be empty).
+  std::string dir;
+  /// Only these topics; empty: every teleop topic.
+  std::vector<std::string> topics;
+  /// Stop after this long (0: until interrupted).
+  double duration_s = 0.0;
+  /// Samples waiting for the disk at most; beyond, a sample is dropped and counted (memory stays
+  /// bounded when the disk cannot keep up).
+  size_t queue_capacity = 1 << 17;
+};
+
+struct RecordResult {
+  uint64_t messages = 0;
+  uint64_t bytes = 0;
+  /// Dropped because the queue to the disk was full.
+  uint64_t dropped = 0;
+  /// Gaps in the writers' sequence numbers: samples that never reached the recorder.
+  uint64_t missed = 0;
+  double seconds = 0.0;
+  std::vector<std::string> topics;
+};
+
+/// Records until interrupted or the duration is over. Throws bag::BagError or ConfigError.
+RecordResult record(const BusOptions& bus, const RecordOptions& options, FILE* log);
+
+}  // namespace teleop::tools

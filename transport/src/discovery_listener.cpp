@@ -1,0 +1,97 @@
+#include "discovery_listener.h"
+
+#include <fastrtps/utils/IPLocator.h>
+
+#include <cstring>
+#include <vector>
+
+namespace teleop::transport {
+namespace {
+
+using eprosima::fastrtps::rtps::GUID_t;
+using eprosima::fastrtps::rtps::IPLocator;
+using eprosima::fastrtps::rtps::Locator_t;
+using eprosima::fastrtps::rtps::ParticipantDiscoveryInfo;
+using eprosima::fastrtps::rtps::ParticipantProxyData;
+using eprosima::fastrtps::rtps::ReaderDiscoveryInfo;
+using eprosima::fastrtps::rtps::WriterDiscoveryInfo;
+
+WriterId id_of(const GUID_t& guid) {
+  WriterId id;
+  std::memcpy(id.bytes.data(), guid.guidPrefix.value, 12);
+  std::memcpy(id.bytes.data() + 12, guid.entityId.value, 4);
+  return id;
+}
+
+int64_t to_ns(const eprosima::fastrtps::Duration_t& d) {
+  if (d == eprosima::fastrtps::c_TimeInfinite) return 0;
+  return static_cast<int64_t>(d.seconds) * 1'000'000'000 + static_cast<int64_t>(d.nanosec);
+}
+
+std::string host_of(const ParticipantProxyData& data) {
+  for (const auto& property : data.m_properties) {
+    if (property.first() == kHostProperty) return property.second();
+  }
+  for (const auto& locator : data.default_locators.unicast) return IPLocator::ip_to_string(locator);
+  return "?";
+}
+
+template <typename Qos>
+void fill_qos(const Qos& qos, EndpointInfo& info) {
+  info.reliable = qos.m_reliability.kind == eprosima::fastdds::dds::RELIABLE_RELIABILITY_QOS;
+  info.transient_local = qos.m_durability.kind != eprosima::fastdds::dds::VOLATILE_DURABILITY_QOS;
+  info.deadline_ns = to_ns(qos.m_deadline.period);
+  info.lease_ns = to_ns(qos.m_liveliness.lease_duration);
+}
+
+template <typename ProxyData>
+EndpointInfo endpoint_of(const ProxyData& data, bool is_writer) {
+  EndpointInfo info;
+  info.guid = id_of(data.guid());
+  info.is_writer = is_writer;
+  info.topic = data.topicName().to_string();
+  info.type = data.typeName().to_string();
+  fill_qos(data.m_qos, info);
+  return info;
+}
+
+}  // namespace
+
+void DiscoveryListener::on_participant_discovery(eprosima::fastdds::dds::DomainParticipant*,
+                                                 ParticipantDiscoveryInfo&& info) {
+  const std::string name = info.info.m_participantName.to_string();
+  const bool gone = info.status == ParticipantDiscoveryInfo::REMOVED_PARTICIPANT ||
+                    info.status == ParticipantDiscoveryInfo::DROPPED_PARTICIPANT;
+  if (engine_) {
+    if (gone) {
+      engine_->peers().remove(name);
+    } else {
+      std::vector<Locator_t> locators;
+      for (const auto& l : info.info.default_locators.unicast) locators.push_back(l);
+      for (const auto& l : info.info.default_locators.multicast) locators.push_back(l);
+      for (const auto& l : info.info.metatraffic_locators.unicast) locators.push_back(l);
+      engine_->peers().add(name, locators);
+    }
+  }
+  if (observer_) {
+    ParticipantInfo participant;
+    std::memcpy(participant.id.data(), info.info.m_guid.guidPrefix.value, participant.id.size());
+    participant.name = name;
+    participant.host = host_of(info.info);
+    observer_->on_participant(participant, !gone);
+  }
+}
+
+void DiscoveryListener::on_publisher_discovery(eprosima::fastdds::dds::DomainParticipant*, WriterDiscoveryInfo&& info) {
+  if (!observer_) return;
+  const bool gone = info.status == WriterDiscoveryInfo::REMOVED_WRITER;
+  observer_->on_endpoint(endpoint_of(info.info, true), !gone);
+}
+
+void DiscoveryListener::on_subscriber_discovery(eprosima::fastdds::dds::DomainParticipant*, ReaderDiscoveryInfo&& info) {
+  if (!observer_) return;
+  const bool gone = info.status == ReaderDiscoveryInfo::REMOVED_READER;
+  observer_->on_endpoint(endpoint_of(info.info, false), !gone);
+}
+
+}  // namespace teleop::transport
