@@ -64,8 +64,6 @@ BagError SqliteDb::error(int rc, const std::string& what) const {
 
 void SqliteDb::fail(int rc, const std::string& what) const { throw error(rc, what); }
 
-bool SqliteDb::in_transaction() const { return sqlite3_get_autocommit(db_) == 0; }
-
 SqliteStatement::SqliteStatement(SqliteDb& db, const std::string& sql) : db_(db) {
   const int rc = sqlite3_prepare_v2(db_.handle(), sql.c_str(), -1, &stmt_, nullptr);
   if (rc != SQLITE_OK) db_.fail(rc, "preparing \"" + sql + "\"");

@@ -31,8 +31,6 @@ class SqliteDb {
   /// Throws error(rc, what).
   [[noreturn]] void fail(int rc, const std::string& what) const;
 
-  /// True between BEGIN and COMMIT (also false after SQLite rolled a transaction back itself).
-  bool in_transaction() const;
   sqlite3* handle() const { return db_; }
   const std::string& path() const { return path_; }
 
