@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -131,10 +132,18 @@ TEST(ExperimentProcess, AnalysesTracesOfTwoProcessesAndKeepsFailedAndBrokenRunsA
             std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("RESULT: FAILED (2 runs failed"), std::string::npos) << r.output;
-  // the traces themselves: CLOCK_MONOTONIC seconds, the documented header
+  // the traces themselves: the documented header; the time columns, the state by its name
   const std::string trace = read_file(dir + "/out/good/none/leader.csv");
-  EXPECT_EQ(lines_of(trace).at(0), "t_s,x_cmd_x,x_cmd_y,x_cmd_z,f_felt_x,f_felt_y,f_felt_z,tdpa_w_j,state");
-  EXPECT_GT(lines_of(trace).size(), 1000u);
+  EXPECT_EQ(lines_of(trace).at(0),
+            "t_s,wall_s,lateness_us,x_cmd_x,x_cmd_y,x_cmd_z,f_felt_x,f_felt_y,f_felt_z,tdpa_w_j,state");
+  ASSERT_GT(lines_of(trace).size(), 1000u);
+  const auto row = cells_of(lines_of(trace).at(1000));
+  const double wall_s = std::stod(row.at(1));
+  const double now_s = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  EXPECT_GT(wall_s, now_s - 600) << "CLOCK_REALTIME of this run";
+  EXPECT_LE(wall_s, now_s);
+  EXPECT_GE(std::stod(row.at(2)), 0.0) << "lateness";
+  EXPECT_EQ(row.back(), "running");
 }
 
 }  // namespace
