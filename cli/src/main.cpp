@@ -1,6 +1,6 @@
 // teleop: command-line entry point. `teleop launch scenario.yaml` runs a scenario, `teleop sweep`
 // one scenario under several network profiles, `teleop experiment` runs x profiles with metrics,
-// `teleop reset NODE` clears a node's latched reflex.
+// `teleop reset NODE` clears a node's latched reflex, `teleop plot RUN_DIR` draws a run's figures.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -14,6 +14,7 @@
 #include "teleop/experiment/soak.h"
 #include "teleop/launcher/launcher.h"
 #include "teleop/launcher/reset_request.h"
+#include "plot_command.h"
 
 int main(int argc, char** argv) {
   using namespace teleop::launcher;
@@ -90,12 +91,14 @@ int main(int argc, char** argv) {
   reset_cmd->add_option("--domain", reset_options.domain_id, "DDS domain id (overrides the config)")->check(CLI::Range(0, 232));
   reset_cmd->add_option("--timeout", reset_options.timeout_s, "seconds to wait for the node to acknowledge")
       ->check(CLI::Range(0.1, 600.0));
+  const teleop::cli::PlotCommand plot(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   try {
+    if (plot.parsed()) return plot.run();
     if (reset_cmd->parsed()) {
       if (send_reset(reset_options)) {
         std::printf("reset sent to %s and acknowledged\n", reset_options.target.c_str());
