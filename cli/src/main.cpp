@@ -72,6 +72,8 @@ int main(int argc, char** argv) {
       ->add_option("--domain", experiment_options.domain_id,
                    "DDS domain of the first run; each further run takes the next (default 60)")
       ->check(CLI::Range(0, 232));
+  experiment_cmd->add_flag("--no-plots{false}", experiment_options.plots,
+                           "no figures (default: one per metric beside the CSV, each run's in its folder)");
   std::string soak_path;
   teleop::experiment::SoakOptions soak_options;
   CLI::App* soak_cmd = app.add_subcommand(

@@ -37,9 +37,10 @@ std::string csv_cell(const std::string& csv, size_t row, const std::string& colu
   return cells_of(lines.at(row + 1)).at(static_cast<size_t>(it - header.begin()));
 }
 
+// without figures: these tests are about the numbers (plot_process_test.cpp checks the figures)
 ProcessResult run_experiment(const std::string& file, const std::string& report_dir) {
   return run_process({bin("teleop"), "experiment", file, "--report-dir", report_dir, "--domain",
-                      std::to_string(unique_domain()), "--bin-dir", TELEOP_BIN_DIR},
+                      std::to_string(unique_domain()), "--bin-dir", TELEOP_BIN_DIR, "--no-plots"},
                      std::chrono::seconds(120));
 }
 
@@ -81,6 +82,7 @@ TEST(ExperimentProcess, RunsEveryProfileWithTheRealNodesAndAnalysesTheirTraces) 
   for (const std::string profile : {"none", "wan-35ms"}) {
     EXPECT_TRUE(fs::exists(dir + "/out/scripted/" + profile + "/leader.yaml")) << profile;
     EXPECT_TRUE(fs::exists(dir + "/out/scripted/" + profile + "/follower.csv")) << profile;
+    EXPECT_FALSE(fs::exists(dir + "/out/scripted/" + profile + "/position.png")) << "--no-plots";
   }
 }
 
