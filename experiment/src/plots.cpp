@@ -56,8 +56,9 @@ std::string package_dir() {
   for (const fs::path& dir : candidates) {
     if (fs::exists(dir / "__main__.py", ec)) return dir.string();
   }
-  throw PlotError("the plotting package (teleop_plot/__main__.py) is neither in " + std::string(TELEOP_PLOT_SOURCE_DIR) +
-                  " nor in " + TELEOP_PLOT_INSTALL_DIR + " (install teleop, or build it from its source tree)");
+  throw PlotError("the plotting package (teleop_plot/__main__.py) is neither in " +
+                  std::string(TELEOP_PLOT_SOURCE_DIR) + " nor in " + TELEOP_PLOT_INSTALL_DIR +
+                  " (install teleop, or build it from its source tree)");
 }
 
 std::string python_with_matplotlib() {

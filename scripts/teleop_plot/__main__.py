@@ -51,8 +51,9 @@ def main():
                     print(f"teleop plot: skipped {name}: {why} ({args.run_dir})")
         else:
             stem = os.path.splitext(os.path.basename(args.csv))[0]
-            write(results_figures(args.csv, stem), args.out_dir or os.path.dirname(os.path.abspath(args.csv)), stem + "_")
-    except (TraceError, ResultsError) as e:
+            out_dir = args.out_dir or os.path.dirname(os.path.abspath(args.csv))
+            write(results_figures(args.csv, stem), out_dir, stem + "_")
+    except (TraceError, ResultsError, OSError) as e:
         print(f"teleop plot: {e}", file=sys.stderr)
         return EXIT_ERROR
     return 0

@@ -20,6 +20,7 @@ def new_figure(rows, title, sharex=True):
     fig.suptitle(title, fontsize=13)
     for ax in axes[:, 0]:
         ax.grid(True, alpha=0.3)
+        ax.set_axisbelow(True)  # the grid behind bars and lines
     return fig, list(axes[:, 0])
 
 

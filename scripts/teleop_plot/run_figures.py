@@ -10,6 +10,9 @@ from run_traces import STATE_NAMES
 AXES = ("x", "y", "z")
 # one colour per role, the same in every figure
 LEADER, FOLLOWER, ESTIMATE = "tab:blue", "tab:orange", "tab:green"
+# the force figure's series: column prefix, colour, line style, what it is
+FORCES = [("f_felt_", LEADER, "-", "felt"), ("f_ext_", FOLLOWER, "--", "exerted"),
+          ("f_est_", ESTIMATE, ":", "estimated")]
 
 
 class Skip(Exception):
@@ -25,6 +28,16 @@ def arm_prefixes(run, column):
             if name.endswith(column) and name[: -len(column)] not in prefixes:
                 prefixes.append(name[: -len(column)])
     return prefixes
+
+
+def arm_of(column, name):
+    """`column`'s arm ("left") when it is `name` prefixed by one, else ""."""
+    return column[: -len(name)].rstrip("_")
+
+
+def colour_of(trace):
+    """The leader's colour for a trace that commands (x_cmd_*), the follower's for the others."""
+    return LEADER if any(n.endswith("x_cmd_x") for n in trace.names) else FOLLOWER
 
 
 def titled(title, run, prefix=""):
@@ -67,9 +80,8 @@ def force(run):
     simulation's ground truth) and estimates (f_est_*), per axis and as a norm."""
     figures = []
     for p in arm_prefixes(run, "f_felt_x"):
-        series = [(t, p + "f_felt_", LEADER, "-", f"felt ({t.node} f_felt)") for t in run.with_column(p + "f_felt_x")]
-        series += [(t, p + "f_ext_", FOLLOWER, "--", f"exerted ({t.node} f_ext)") for t in run.with_column(p + "f_ext_x")]
-        series += [(t, p + "f_est_", ESTIMATE, ":", f"estimated ({t.node} f_est)") for t in run.with_column(p + "f_est_x")]
+        series = [(t, p + column, colour, style, f"{what} ({t.node} {column.rstrip('_')})")
+                  for column, colour, style, what in FORCES for t in run.with_column(p + column + "x")]
         if all(column == p + "f_felt_" for _, column, _, _, _ in series):
             continue
         fig, axes = new_figure(4, titled("Force: felt by the operator vs exerted by the follower", run, p))
@@ -81,7 +93,8 @@ def force(run):
         finish(run, axes)
         figures.append((p + "force", fig))
     if not figures:
-        raise Skip("no force felt (f_felt_x/y/z) together with a force exerted (f_ext_x/y/z) or estimated (f_est_x/y/z)")
+        raise Skip("no force felt (f_felt_x/y/z) together with a force exerted (f_ext_x/y/z) or "
+                   "estimated (f_est_x/y/z)")
     return figures
 
 
@@ -94,9 +107,10 @@ def tdpa_energy(run):
     # one axes per side: each on its own scale (the two sides' energies differ by orders of magnitude)
     fig, axes = new_figure(len(lines), titled("TDPA: observed energy of the passivity observers (>= 0: passive)", run))
     for ax, (t, c) in zip(axes, lines):
-        ax.plot(run.time(t), t[c], color=LEADER if "x_cmd_x" in t.names else FOLLOWER, label=f"{t.node} {c}")
+        ax.plot(run.time(t), t[c], color=colour_of(t), label=f"{t.node} {c}")
         ax.axhline(0.0, color="black", linewidth=0.8)
-        ax.set_ylabel(f"{t.node} [J]")
+        arm = arm_of(c, "tdpa_w_j")
+        ax.set_ylabel(f"{t.node} {arm} [J]" if arm else f"{t.node} [J]")
         ax.legend(loc="upper right", fontsize=9)
     axes[-1].set_xlabel(run.time_label())
     return [("tdpa_energy", fig)]
@@ -112,7 +126,7 @@ def lateness(run):
         late = t["lateness_us"]
         p50, p99 = numpy.nanpercentile(late, [50, 99])
         label = f"{t.node}: p50 {p50:.1f} µs, p99 {p99:.1f} µs, max {numpy.nanmax(late):.0f} µs"
-        ax.plot(run.time(t), late, color=LEADER, linewidth=0.8, label=label)
+        ax.plot(run.time(t), late, color=colour_of(t), linewidth=0.8, label=label)
         # linear up to 10 µs (the usual wake-up), logarithmic above (the stalls); plain numbers
         ax.set_yscale("symlog", linthresh=10.0)
         ax.set_ylim(0.0, max(20.0, 2.0 * numpy.nanmax(late)))
@@ -130,10 +144,11 @@ def states(run):
         raise Skip("no state column")
     fig, axes = new_figure(len(rows), titled("Node states", run))
     for ax, (t, c) in zip(axes, rows):
-        ax.step(run.time(t), t[c], where="post", color=FOLLOWER)
+        ax.step(run.time(t), t[c], where="post", color=colour_of(t))
         ax.set_yticks(range(len(STATE_NAMES)), STATE_NAMES, fontsize=8)
         ax.set_ylim(-0.5, len(STATE_NAMES) - 0.5)
-        ax.set_ylabel(t.node if c == "state" else f"{t.node}\n{c}")
+        arm = arm_of(c, "state")
+        ax.set_ylabel(f"{t.node}\n{arm}" if arm else t.node)
     axes[-1].set_xlabel(run.time_label())
     return [("states", fig)]
 

@@ -6,6 +6,7 @@ Header `t_s,wall_s,lateness_us,<columns>` (older traces: `t_s,<columns>`); a sta
 
 import glob
 import os
+import warnings
 
 import numpy
 
@@ -42,7 +43,10 @@ class Trace:
             raise TraceError(f"{path}: not a trace (its first column is not t_s)")
         converters = {i: _state_value for i, n in enumerate(self.names) if is_state_column(n)}
         try:
-            data = numpy.loadtxt(path, delimiter=",", skiprows=1, ndmin=2, converters=converters, encoding="utf-8")
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", UserWarning)  # "input contained no data": a header alone
+                data = numpy.loadtxt(path, delimiter=",", skiprows=1, ndmin=2, converters=converters,
+                                     encoding="utf-8")
         except ValueError as e:
             raise TraceError(f"{path}: {e}") from e
         self.columns = {n: data[:, i] for i, n in enumerate(self.names)} if data.size else {}

@@ -25,9 +25,9 @@ TEST(RunTraces, ARunDirWithoutTracesIsAnErrorNamingTheDir) {
   dir.write("tiny.csv", "run,profile,status\n");
   dir.write("leader.yaml", "name: leader\n");
   const std::string message = error_of([&] { run_traces(dir.path("")); });
-  EXPECT_EQ(message.rfind(dir.path("") + ": no trace in this directory (expected <node>.csv files with a t_s column", 0),
-            0u)
-      << message;
+  const std::string expected =
+      dir.path("") + ": no trace in this directory (expected <node>.csv files with a t_s column";
+  EXPECT_EQ(message.rfind(expected, 0), 0u) << message;
 }
 
 TEST(RunTraces, AMissingDirIsAnErrorNamingIt) {

@@ -18,7 +18,8 @@ constexpr const char* kHeightPx = "800";
 constexpr const char* kMinBytes = "10000";
 const std::vector<std::string> kRunFigures = {"position", "force", "tdpa_energy", "lateness", "states"};
 
-std::vector<std::string> pngs(const std::string& dir, const std::string& prefix, const std::vector<std::string>& names) {
+std::vector<std::string> pngs(const std::string& dir, const std::string& prefix,
+                              const std::vector<std::string>& names) {
   std::vector<std::string> out;
   for (const std::string& n : names) out.push_back(dir + "/" + prefix + n + ".png");
   return out;
@@ -57,7 +58,8 @@ TEST(PlotProcess, TheExperimentDrawsItsRunsAndMetricsAndPlotDrawsARunAgain) {
   }
   expect_drawn(figures);
 
-  const ProcessResult plot = run_process({bin("teleop"), "plot", run_dir, "-o", dir + "/again"}, std::chrono::seconds(60));
+  const ProcessResult plot =
+      run_process({bin("teleop"), "plot", run_dir, "-o", dir + "/again"}, std::chrono::seconds(60));
   EXPECT_EQ(plot.exit_status, 0) << plot.output;
   for (const std::string& f : pngs(dir + "/again", "", kRunFigures)) {
     EXPECT_NE(plot.output.find("wrote " + f), std::string::npos) << plot.output;
