@@ -22,7 +22,8 @@ void BM_RecordRow(benchmark::State& state) {
   teleop::runtime::TraceRecorder recorder(columns(n), 20'000);
   int64_t t = 0;
   for (auto _ : state) {
-    double* row = recorder.begin_row(t += 1'000'000);
+    t += 1'000'000;
+    double* row = recorder.begin_row({t, t, 0});
     for (int c = 0; c < n; ++c) row[c] = static_cast<double>(t) * 1e-9 + c;
     benchmark::DoNotOptimize(row);
   }
@@ -34,7 +35,7 @@ void BM_WriteTenSecondsAt1kHz(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   teleop::runtime::TraceRecorder recorder(columns(n), 10'000);
   for (int64_t i = 0; i < 10'000; ++i) {
-    double* row = recorder.begin_row(i * 1'000'000);
+    double* row = recorder.begin_row({i * 1'000'000, i * 1'000'000, 0});
     for (int c = 0; c < n; ++c) row[c] = 0.123456789 * static_cast<double>(i + c);
   }
   const std::string path = (std::filesystem::temp_directory_path() / "teleop_trace_bench.csv").string();

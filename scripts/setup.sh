@@ -17,6 +17,8 @@ packages=(
   qemu-system-x86 busybox-static cpio
   # libFuzzer target of the CAN frame decoders (test/hand/fuzz): clang and its fuzzer runtime
   clang libclang-rt-14-dev
+  # figures of runs and experiments (teleop plot, teleop experiment; docs/plots.md)
+  python3-matplotlib
 )
 
 missing=()

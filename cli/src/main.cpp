@@ -1,6 +1,7 @@
 // teleop: command-line entry point. `teleop launch scenario.yaml` runs a scenario, `teleop sweep`
 // one scenario under several network profiles, `teleop experiment` runs x profiles with metrics,
-// `teleop reset NODE` clears a node's latched reflex; `teleop topic`, `monitor` (bus_commands.h) look at the bus.
+// `teleop reset NODE` clears a node's latched reflex, `teleop plot RUN_DIR` draws a run's figures;
+// `teleop topic`, `monitor`, `record`, `replay` (bus_commands.h) look at and keep the bus.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include "teleop/launcher/launcher.h"
 #include "teleop/launcher/reset_request.h"
 #include "bus_commands.h"
+#include "plot_command.h"
 
 int main(int argc, char** argv) {
   using namespace teleop::launcher;
@@ -72,6 +74,8 @@ int main(int argc, char** argv) {
       ->add_option("--domain", experiment_options.domain_id,
                    "DDS domain of the first run; each further run takes the next (default 60)")
       ->check(CLI::Range(0, 232));
+  experiment_cmd->add_flag("--no-plots{false}", experiment_options.plots,
+                           "no figures (default: one per metric beside the CSV, each run's in its folder)");
   std::string soak_path;
   teleop::experiment::SoakOptions soak_options;
   CLI::App* soak_cmd = app.add_subcommand(
@@ -92,6 +96,7 @@ int main(int argc, char** argv) {
   reset_cmd->add_option("--timeout", reset_options.timeout_s, "seconds to wait for the node to acknowledge")
       ->check(CLI::Range(0.1, 600.0));
   BusCommands bus_commands(app);
+  const teleop::cli::PlotCommand plot(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -99,6 +104,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (const auto rc = bus_commands.run()) return *rc;
+    if (plot.parsed()) return plot.run();
     if (reset_cmd->parsed()) {
       if (send_reset(reset_options)) {
         std::printf("reset sent to %s and acknowledged\n", reset_options.target.c_str());

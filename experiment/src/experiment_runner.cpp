@@ -8,6 +8,7 @@
 
 #include "teleop/common/config.h"
 #include "box_task_analysis.h"
+#include "teleop/experiment/plots.h"
 #include "teleop/experiment/results_table.h"
 #include "teleop/launcher/launcher.h"
 #include "teleop/runtime/shutdown_signal.h"
@@ -94,6 +95,25 @@ void write_text(const std::string& path, const std::string& text) {
   if (!out.flush()) throw std::runtime_error("cannot write " + path);
 }
 
+// the figures beside the CSV and in each run's folder; one that cannot be drawn is a warning: the
+// numbers are the experiment's result, not its figures
+void write_figures(const ExperimentResult& result) {
+  const auto warn = [](const PlotError& e) { std::printf("[experiment] warning: no figures: %s\n", e.what()); };
+  try {
+    const PlotTool tool = find_plot_tool();
+    for (const RunRow& row : result.rows) {
+      try {
+        plot_run(tool, row.trace_dir, row.trace_dir);
+      } catch (const PlotError& e) {
+        warn(e);
+      }
+    }
+    plot_results(tool, result.csv_path);
+  } catch (const PlotError& e) {
+    warn(e);
+  }
+}
+
 }  // namespace
 
 RunRow analyse_run(const std::string& run, const std::string& profile, const std::string& trace_dir, bool launched_ok,
@@ -160,6 +180,7 @@ ExperimentResult run_experiment(const ExperimentConfig& config, const Experiment
     result.failures += static_cast<int>(total - result.rows.size());
   }
   write_text(result.csv_path, format_csv(result.rows, config.analysis.kind));
+  if (options.plots && !runtime::shutdown_requested()) write_figures(result);
   return result;
 }
 

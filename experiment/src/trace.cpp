@@ -7,6 +7,9 @@
 #include <fstream>
 #include <limits>
 
+#include "teleop/runtime/status_names.h"
+#include "teleop/runtime/trace_recorder.h"
+
 namespace teleop::experiment {
 namespace {
 
@@ -33,6 +36,16 @@ bool parse_cell(const std::string& cell, double& value) {
   // ERANGE also flags an underflow to a subnormal (a filtered torque decaying to 1e-308): a number;
   // only an overflow (inf) is not
   return end == cell.c_str() + cell.size() && !(errno == ERANGE && std::isinf(value));
+}
+
+// a state column's cell: the state's name (as written since the traces name their states) or its
+// number (older traces); NaN for an empty cell
+bool parse_state_cell(const std::string& cell, double& value) {
+  if (const auto state = runtime::state_from_name(cell)) {
+    value = static_cast<double>(*state);
+    return true;
+  }
+  return parse_cell(cell, value);
 }
 
 }  // namespace
@@ -69,6 +82,8 @@ Trace read_trace(const std::string& path) {
     throw TraceError(path + ":1: the first column must be 't_s', got '" + header.front() + "'");
   trace.names.assign(header.begin() + 1, header.end());
   trace.columns.resize(trace.names.size());
+  std::vector<bool> state_column;
+  for (const std::string& name : header) state_column.push_back(runtime::is_state_column(name));
   for (int line_no = 2; std::getline(in, line); ++line_no) {
     if (line.empty()) continue;
     const std::vector<std::string> cells = split_cells(line);
@@ -79,7 +94,10 @@ Trace read_trace(const std::string& path) {
     }
     for (size_t i = 0; i < cells.size(); ++i) {
       double value = 0;
-      if (!parse_cell(cells[i], value)) throw TraceError(where + header[i] + ": '" + cells[i] + "' is not a number");
+      if (state_column[i] ? !parse_state_cell(cells[i], value) : !parse_cell(cells[i], value)) {
+        throw TraceError(where + header[i] + ": '" + cells[i] + "' is not a number" +
+                         (state_column[i] ? " nor a state's name" : ""));
+      }
       if (i == 0) {
         if (!std::isfinite(value)) throw TraceError(where + "t_s: '" + cells[i] + "' is not a time");
         trace.t_s.push_back(value);

@@ -150,9 +150,11 @@ void run_loop(const NodeConfig& node, NodeLogic& logic, StatusPublisher& status,
   pacer.start();
   while (!shutdown_requested()) {
     const CycleTick tick = pacer.wait_next();
+    // at the release, before the cycle's work: the wall time of the same instant as tick.now_ns
+    const int64_t wall_ns = system_now_ns();
     if (shutdown_requested() || tick.now_ns >= end_ns) break;
     logic.cycle(tick);
-    if (trace != nullptr) logic.trace_row(trace->begin_row(tick.now_ns));
+    if (trace != nullptr) logic.trace_row(trace->begin_row({tick.now_ns, wall_ns, tick.now_ns - tick.deadline_ns}));
     status.maybe_publish(tick, logic, pacer.stats());
   }
 }
@@ -239,7 +241,8 @@ int run_node(int argc, char** argv, const NodeDescription& description) {
                  "override a config value: KEY is a dotted path, VALUE is YAML, e.g. --set node.rate_hz=500 or "
                  "--set leader.amplitudes_rad=[0,0.2,0,0.2,0,0,0]; repeatable, applied in order");
   app.add_option("--trace", cli.trace_path,
-                 "write the node's time trace (CSV, t_s = CLOCK_MONOTONIC) to this file at exit");
+                 "write the node's time trace (CSV: t_s = CLOCK_MONOTONIC, wall_s = CLOCK_REALTIME, lateness_us, the "
+                 "node's columns) to this file at exit");
   app.add_flag("--trace-stream", cli.trace_stream,
                "write the trace while running (a SIGKILL or crash loses at most its last 50 ms), not at exit");
   app.add_option("--trace-seconds", cli.trace_seconds,

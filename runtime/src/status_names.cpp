@@ -13,6 +13,13 @@ const char* state_name(msg::NodeState state) {
   return "unknown";
 }
 
+std::optional<msg::NodeState> state_from_name(std::string_view name) {
+  for (const msg::NodeState s : kNodeStates) {
+    if (name == state_name(s)) return s;
+  }
+  return std::nullopt;
+}
+
 const char* fault_name(uint32_t fault_code) {
   switch (fault_code) {
     case msg::FAULT_NONE: return "none";

@@ -8,7 +8,7 @@ namespace teleop::runtime {
 TraceStream::TraceStream(const TraceRecorder& recorder, const std::string& path, int64_t period_ns)
     : recorder_(recorder), path_(path), file_(std::fopen(path.c_str(), "w"), &std::fclose), row_(recorder.columns().size()) {
   if (!file_) throw std::runtime_error("cannot write the trace " + path);
-  TraceRecorder::write_header(file_.get(), recorder_.columns());
+  recorder_.write_header(file_.get());
   thread_ = std::thread([this, period_ns] { run(period_ns); });
 }
 
@@ -32,12 +32,12 @@ bool TraceStream::drain() {
   const uint64_t complete = recorder_.rows_complete();
   uint64_t written = 0;
   for (; next_ < complete; ++next_) {
-    int64_t t_ns = 0;
-    if (!recorder_.copy_row(next_, t_ns, row_.data())) {
+    TraceTime time;
+    if (!recorder_.copy_row(next_, time, row_.data())) {
       ++lost_;
       continue;
     }
-    TraceRecorder::write_row(f, t_ns, row_.data(), row_.size());
+    recorder_.write_row(f, time, row_.data());
     ++written;
   }
   // to the kernel now: what is there survives the process; counted once it is there

@@ -21,7 +21,7 @@ TEST(BoxTaskProcesses, TheOperatorsSqueezeLiftsTheBoxClearOfItsSocketUnderPfcAnd
   const std::string dir = make_temp_dir();
   const ProcessResult r = run_process({bin("teleop"), "experiment", source("config/experiments/box_task.yaml"), "--runs",
                                        "pfc", "--profiles", "wan-35ms", "--duration", "8", "--report-dir", dir,
-                                       "--domain", std::to_string(unique_domain())},
+                                       "--domain", std::to_string(unique_domain()), "--no-plots"},
                                       std::chrono::seconds(90));
   ASSERT_EQ(r.exit_status, 0) << r.output;
   const experiment::Trace follower = experiment::read_trace(dir + "/pfc/wan-35ms/follower.csv");

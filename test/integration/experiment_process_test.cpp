@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -36,9 +37,10 @@ std::string csv_cell(const std::string& csv, size_t row, const std::string& colu
   return cells_of(lines.at(row + 1)).at(static_cast<size_t>(it - header.begin()));
 }
 
+// without figures: these tests are about the numbers (plot_process_test.cpp checks the figures)
 ProcessResult run_experiment(const std::string& file, const std::string& report_dir) {
   return run_process({bin("teleop"), "experiment", file, "--report-dir", report_dir, "--domain",
-                      std::to_string(unique_domain()), "--bin-dir", TELEOP_BIN_DIR},
+                      std::to_string(unique_domain()), "--bin-dir", TELEOP_BIN_DIR, "--no-plots"},
                      std::chrono::seconds(120));
 }
 
@@ -80,6 +82,7 @@ TEST(ExperimentProcess, RunsEveryProfileWithTheRealNodesAndAnalysesTheirTraces) 
   for (const std::string profile : {"none", "wan-35ms"}) {
     EXPECT_TRUE(fs::exists(dir + "/out/scripted/" + profile + "/leader.yaml")) << profile;
     EXPECT_TRUE(fs::exists(dir + "/out/scripted/" + profile + "/follower.csv")) << profile;
+    EXPECT_FALSE(fs::exists(dir + "/out/scripted/" + profile + "/position.png")) << "--no-plots";
   }
 }
 
@@ -131,10 +134,18 @@ TEST(ExperimentProcess, AnalysesTracesOfTwoProcessesAndKeepsFailedAndBrokenRunsA
             std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("RESULT: FAILED (2 runs failed"), std::string::npos) << r.output;
-  // the traces themselves: CLOCK_MONOTONIC seconds, the documented header
+  // the traces themselves: the documented header; the time columns, the state by its name
   const std::string trace = read_file(dir + "/out/good/none/leader.csv");
-  EXPECT_EQ(lines_of(trace).at(0), "t_s,x_cmd_x,x_cmd_y,x_cmd_z,f_felt_x,f_felt_y,f_felt_z,tdpa_w_j,state");
-  EXPECT_GT(lines_of(trace).size(), 1000u);
+  EXPECT_EQ(lines_of(trace).at(0),
+            "t_s,wall_s,lateness_us,x_cmd_x,x_cmd_y,x_cmd_z,f_felt_x,f_felt_y,f_felt_z,tdpa_w_j,state");
+  ASSERT_GT(lines_of(trace).size(), 1000u);
+  const auto row = cells_of(lines_of(trace).at(1000));
+  const double wall_s = std::stod(row.at(1));
+  const double now_s = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  EXPECT_GT(wall_s, now_s - 600) << "CLOCK_REALTIME of this run";
+  EXPECT_LE(wall_s, now_s);
+  EXPECT_GE(std::stod(row.at(2)), 0.0) << "lateness";
+  EXPECT_EQ(row.back(), "running");
 }
 
 }  // namespace

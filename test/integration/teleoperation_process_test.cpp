@@ -30,7 +30,7 @@ std::map<std::string, std::string> run_stiff_wall(const std::string& architectur
   const std::string csv = dir + "/results.csv";
   const ProcessResult r = run_process({bin("teleop"), "experiment", source("config/experiments/" + experiment), "--runs",
                                        architecture, "--profiles", "wan-35ms", "--report-dir", dir, "--csv", csv,
-                                       "--domain", std::to_string(unique_domain())},
+                                       "--domain", std::to_string(unique_domain()), "--no-plots"},
                                       std::chrono::seconds(90));
   EXPECT_EQ(r.exit_status, 0) << r.output;
   std::istringstream lines(read_file(csv));

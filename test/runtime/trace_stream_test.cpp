@@ -21,11 +21,11 @@ std::vector<std::string> lines_of(const std::string& path) {
   return lines;
 }
 
-// the loop's side: `rows` rows, row i holding (i, 2i) at i us, a pause of `pause` every 10 rows
+// the loop's side: `rows` rows, row i holding (i, 2i) at i us (wall: 1 s later), a pause of `pause` every 10 rows
 // (a trace is written while this runs); `finish`: the last row is complete too
 void record(TraceRecorder& trace, int rows, std::chrono::microseconds pause, bool finish = true) {
   for (int i = 0; i < rows; ++i) {
-    double* row = trace.begin_row(int64_t{i} * 1000);
+    double* row = trace.begin_row({int64_t{i} * 1000, 1'000'000'000 + int64_t{i} * 1000, 0});
     row[0] = i;
     row[1] = 2.0 * i;
     if (i % 10 == 0 && pause.count() > 0) std::this_thread::sleep_for(pause);
@@ -44,9 +44,9 @@ TEST(TraceStream, WritesEveryRowInOrderWhileTheLoopRecords) {
   EXPECT_EQ(stream.rows_lost(), 0u);
   const auto lines = lines_of(dir.path("t.csv"));
   ASSERT_EQ(lines.size(), 3001u);
-  EXPECT_EQ(lines[0], "t_s,i,twice");
-  EXPECT_EQ(lines[1], "0.000000000,0,0");
-  EXPECT_EQ(lines[3000], "0.002999000,2999,5998");
+  EXPECT_EQ(lines[0], "t_s,wall_s,lateness_us,i,twice");
+  EXPECT_EQ(lines[1], "0.000000000,1.000000000,0.000,0,0");
+  EXPECT_EQ(lines[3000], "0.002999000,1.002999000,0.000,2999,5998");
 }
 
 TEST(TraceStream, LeavesTheRowsSoFarInTheFileBeforeTheEnd) {
@@ -60,7 +60,7 @@ TEST(TraceStream, LeavesTheRowsSoFarInTheFileBeforeTheEnd) {
   const auto lines = lines_of(dir.path("t.csv"));
   // the row being filled (499) is not complete yet; every one before it is there
   ASSERT_EQ(lines.size(), 500u);
-  EXPECT_EQ(lines.back(), "0.000498000,498,996");
+  EXPECT_EQ(lines.back(), "0.000498000,1.000498000,0.000,498,996");
   trace.finish();
   stream.stop();
   EXPECT_EQ(lines_of(dir.path("t.csv")).size(), 501u);
@@ -78,7 +78,7 @@ TEST(TraceStream, CountsTheRowsTheRingOverwroteBeforeTheWriterCame) {
   // what was written is whole and in order
   const auto lines = lines_of(dir.path("t.csv"));
   EXPECT_EQ(lines.size(), stream.rows_written() + 1);
-  EXPECT_EQ(lines.back(), "0.000999000,999,1998");
+  EXPECT_EQ(lines.back(), "0.000999000,1.000999000,0.000,999,1998");
 }
 
 TEST(TraceStream, NamesAFileItCannotWrite) {

@@ -23,6 +23,9 @@ struct ExperimentOptions {
   std::string bin_dir;
   /// DDS domain of the first run; each further run takes the next one. Default 60.
   std::optional<int> domain_id;
+  /// Figures (plots.h): one per metric beside the CSV, each run's in its folder. A figure that
+  /// cannot be drawn is a warning, never the experiment's failure.
+  bool plots = true;
 };
 
 /// One table row: a run under a profile.
@@ -48,7 +51,7 @@ struct ExperimentResult {
   int failures = 0;
 };
 
-/// Runs the experiment and writes the CSV. Throws ConfigError for bad options (an unknown run,
+/// Runs the experiment and writes the CSV (and the figures, unless options.plots is false). Throws ConfigError for bad options (an unknown run,
 /// a profile no node can find) before any run starts; std::runtime_error when the CSV cannot be
 /// written.
 ExperimentResult run_experiment(const ExperimentConfig& config, const ExperimentOptions& options);

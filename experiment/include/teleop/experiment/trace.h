@@ -1,6 +1,6 @@
 #pragma once
-// A node's time trace as written by runtime::TraceRecorder (`t_s,<columns>` CSV), read back for
-// the analysis.
+// A node's time trace as written by runtime::TraceRecorder (`t_s,wall_s,lateness_us,<columns>`
+// CSV; older traces have `t_s,<columns>`), read back for the analysis.
 
 #include <cstddef>
 #include <stdexcept>
@@ -34,8 +34,10 @@ struct Trace {
 /// Throws TraceError naming the file when `trace` has no rows.
 void require_rows(const Trace& trace);
 
-/// Reads a trace CSV. Empty cells and `nan` read as NaN. Throws TraceError when the file cannot
-/// be read, has no `t_s` first column, or a row with the wrong number of cells or a bad number.
+/// Reads a trace CSV. Empty cells and `nan` read as NaN; a state column (runtime::is_state_column)
+/// reads a state's name (`running`) or number as the msg::NodeState's number. Throws TraceError
+/// when the file cannot be read, has no `t_s` first column, or a row with the wrong number of
+/// cells or a bad number.
 Trace read_trace(const std::string& path);
 
 }  // namespace teleop::experiment

@@ -1,0 +1,44 @@
+#pragma once
+// PNG figures of runs and experiments (docs/plots.md): the python package scripts/teleop_plot
+// (matplotlib, Agg backend: no display) run as a child process by `teleop plot` and
+// `teleop experiment`.
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace teleop::experiment {
+
+/// What keeps figures from being drawn: a run dir without traces, no python3 with matplotlib,
+/// no plotting package, the package failing. The message names the dir or says what to install.
+class PlotError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The interpreter and the package that draw the figures.
+struct PlotTool {
+  std::string python;       ///< a python3 that imports matplotlib
+  std::string package_dir;  ///< scripts/teleop_plot, or <prefix>/share/teleop/teleop_plot installed
+};
+
+/// Finds the package (beside an installed teleop: <exe>/../share/teleop/teleop_plot; else the
+/// source tree this was built from; else the install prefix it was configured with) and a python3
+/// that imports matplotlib ($TELEOP_PYTHON if set; else python3 on PATH, then /usr/bin/python3, the
+/// one Debian's python3-matplotlib is for). Throws PlotError saying what is missing and how to
+/// install it.
+PlotTool find_plot_tool();
+
+/// The traces of the run in `run_dir`: its `*.csv` files whose header begins with `t_s`, sorted.
+/// Throws PlotError naming the dir when it does not exist or holds no trace.
+std::vector<std::string> run_traces(const std::string& run_dir);
+
+/// Writes the figures of the run in `run_dir` (run_traces() must find some) into `out_dir`,
+/// created if needed. Throws PlotError.
+void plot_run(const PlotTool& tool, const std::string& run_dir, const std::string& out_dir);
+
+/// Writes one figure per metric of an experiment's results CSV beside it, as
+/// `<csv stem>_<metric>.png`. Throws PlotError.
+void plot_results(const PlotTool& tool, const std::string& csv_path);
+
+}  // namespace teleop::experiment

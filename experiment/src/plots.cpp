@@ -1,0 +1,128 @@
+#include "teleop/experiment/plots.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+extern char** environ;
+
+namespace teleop::experiment {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr const char* kInstallHint = "apt-get install python3-matplotlib (or scripts/setup.sh)";
+
+// Runs `argv` (argv[0] looked up on PATH) and waits for it; its output goes to ours, or nowhere
+// when `quiet`. Returns its exit status; -1 when it could not start or was killed.
+int run_command(const std::vector<std::string>& argv, bool quiet) {
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (quiet) {
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  }
+  // what we printed comes before what the child prints
+  std::fflush(stdout);
+  std::fflush(stderr);
+  pid_t pid = -1;
+  const int spawned = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) return -1;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) return -1;
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string package_dir() {
+  std::vector<fs::path> candidates;
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) candidates.push_back(self.parent_path().parent_path() / "share" / "teleop" / "teleop_plot");
+  candidates.emplace_back(TELEOP_PLOT_SOURCE_DIR);
+  candidates.emplace_back(TELEOP_PLOT_INSTALL_DIR);
+  for (const fs::path& dir : candidates) {
+    if (fs::exists(dir / "__main__.py", ec)) return dir.string();
+  }
+  throw PlotError("the plotting package (teleop_plot/__main__.py) is neither in " +
+                  std::string(TELEOP_PLOT_SOURCE_DIR) + " nor in " + TELEOP_PLOT_INSTALL_DIR +
+                  " (install teleop, or build it from its source tree)");
+}
+
+std::string python_with_matplotlib() {
+  const char* chosen = std::getenv("TELEOP_PYTHON");
+  const std::vector<std::string> candidates =
+      chosen != nullptr ? std::vector<std::string>{chosen} : std::vector<std::string>{"python3", "/usr/bin/python3"};
+  std::string tried;
+  for (const std::string& python : candidates) {
+    if (run_command({python, "-c", "import matplotlib"}, true) == 0) return python;
+    tried += (tried.empty() ? "" : ", ") + python;
+  }
+  throw PlotError("no python3 with matplotlib (tried " + tried + "): " + kInstallHint);
+}
+
+bool is_trace(const fs::path& file) {
+  std::ifstream in(file);
+  std::string header;
+  return std::getline(in, header) && header.rfind("t_s,", 0) == 0;
+}
+
+// runs the package with `args`; its own messages say what it wrote, skipped or could not read
+void run_package(const PlotTool& tool, std::vector<std::string> args, const std::string& what) {
+  // -B: no __pycache__ written into the package (a source tree, or a read-only install)
+  args.insert(args.begin(), {tool.python, "-B", tool.package_dir});
+  const int status = run_command(args, false);
+  if (status == 3) throw PlotError(tool.python + " has no matplotlib: " + kInstallHint);
+  if (status != 0) {
+    throw PlotError("the figures of " + what + " failed (" + tool.package_dir + " exit status " +
+                    std::to_string(status) + ", its message above)");
+  }
+}
+
+}  // namespace
+
+PlotTool find_plot_tool() {
+  PlotTool tool;
+  tool.package_dir = package_dir();
+  tool.python = python_with_matplotlib();
+  return tool;
+}
+
+std::vector<std::string> run_traces(const std::string& run_dir) {
+  std::error_code ec;
+  if (!fs::is_directory(run_dir, ec)) throw PlotError(run_dir + ": no such directory");
+  std::vector<std::string> traces;
+  for (const auto& entry : fs::directory_iterator(run_dir, ec)) {
+    if (entry.path().extension() == ".csv" && is_trace(entry.path())) traces.push_back(entry.path().string());
+  }
+  std::sort(traces.begin(), traces.end());
+  if (traces.empty()) {
+    throw PlotError(run_dir +
+                    ": no trace in this directory (expected <node>.csv files with a t_s column, as `teleop launch "
+                    "--trace-dir` writes them; an experiment keeps each run's in <report dir>/<run>/<profile>/)");
+  }
+  return traces;
+}
+
+void plot_run(const PlotTool& tool, const std::string& run_dir, const std::string& out_dir) {
+  run_traces(run_dir);
+  run_package(tool, {"run", run_dir, out_dir}, run_dir);
+}
+
+void plot_results(const PlotTool& tool, const std::string& csv_path) {
+  run_package(tool, {"results", csv_path}, csv_path);
+}
+
+}  // namespace teleop::experiment

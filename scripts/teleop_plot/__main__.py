@@ -1,0 +1,63 @@
+"""Figures of teleop runs (docs/plots.md); `teleop plot` and `teleop experiment` run this.
+
+  python3 scripts/teleop_plot run RUN_DIR [OUT_DIR]     the traces of one run (<node>.csv) -> OUT_DIR/*.png
+  python3 scripts/teleop_plot results CSV [OUT_DIR]     an experiment's results -> OUT_DIR/<csv name>_<metric>.png
+
+Exit status: 0 done (figures whose columns a run lacks are skipped with a message), 1 an error
+(no trace in the dir, a file that cannot be read), 2 bad arguments, 3 no matplotlib.
+"""
+
+import argparse
+import os
+import sys
+
+EXIT_ERROR, EXIT_NO_MATPLOTLIB = 1, 3
+
+
+def main():
+    parser = argparse.ArgumentParser(prog="teleop_plot", description="PNG figures of teleop runs")
+    commands = parser.add_subparsers(dest="command", required=True)
+    run = commands.add_parser("run", help="the figures of one run's traces")
+    run.add_argument("run_dir")
+    run.add_argument("out_dir", nargs="?", help="default: RUN_DIR")
+    results = commands.add_parser("results", help="one figure per metric of an experiment's results CSV")
+    results.add_argument("csv")
+    results.add_argument("out_dir", nargs="?", help="default: the CSV's folder")
+    args = parser.parse_args()
+    try:
+        import matplotlib  # noqa: F401  (only to say clearly that it is missing)
+    except ImportError:
+        print(f"teleop plot: {sys.executable} has no matplotlib: apt-get install python3-matplotlib "
+              "(or scripts/setup.sh)", file=sys.stderr)
+        return EXIT_NO_MATPLOTLIB
+    # imported here: they load matplotlib
+    import figure_style
+    from results_figures import ResultsError, results_figures
+    from run_figures import FIGURES, Skip
+    from run_traces import Run, TraceError
+
+    def write(figures, out_dir, prefix=""):
+        os.makedirs(out_dir, exist_ok=True)
+        for name, fig in figures:
+            print(f"teleop plot: wrote {figure_style.save(fig, out_dir, prefix + name)}")
+
+    try:
+        if args.command == "run":
+            traces = Run(args.run_dir)
+            for name, figure in FIGURES:
+                try:
+                    write(figure(traces), args.out_dir or args.run_dir)
+                except Skip as why:
+                    print(f"teleop plot: skipped {name}: {why} ({args.run_dir})")
+        else:
+            stem = os.path.splitext(os.path.basename(args.csv))[0]
+            out_dir = args.out_dir or os.path.dirname(os.path.abspath(args.csv))
+            write(results_figures(args.csv, stem), out_dir, stem + "_")
+    except (TraceError, ResultsError, OSError) as e:
+        print(f"teleop plot: {e}", file=sys.stderr)
+        return EXIT_ERROR
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

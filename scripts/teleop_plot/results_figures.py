@@ -1,0 +1,84 @@
+"""The figures of an experiment's results CSV (experiment/src/results_table.cpp): one per numeric
+metric, grouped bars comparing the runs (x axis) under each network profile (one bar each)."""
+
+import csv
+
+from figure_style import new_figure
+
+# columns that name or explain a row; every other column whose cells are numbers is a metric
+NOT_METRICS = {"run", "profile", "status", "stable", "stable_why", "trace_dir", "note"}
+# the unit a metric's name ends in (docs/experiments.md: SI units in the names)
+UNITS = [("_fraction", "fraction of cycles"), ("_mm", "mm"), ("_rad", "rad"), ("_n", "N"), ("_m", "m"), ("_j", "J"),
+         ("_s", "s")]
+
+
+class ResultsError(Exception):
+    """A results CSV that cannot be read or has no metric."""
+
+
+def number(cell):
+    try:
+        return float(cell)
+    except ValueError:
+        return None
+
+
+def unit_of(metric):
+    return next((unit for suffix, unit in UNITS if metric.endswith(suffix)), "")
+
+
+def read_results(path):
+    try:
+        with open(path, newline="", encoding="utf-8") as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        raise ResultsError(f"{path}: {e.strerror}") from e
+    if not rows or "run" not in rows[0] or "profile" not in rows[0]:
+        raise ResultsError(f"{path}: not an experiment's results (no rows, or no run and profile columns)")
+    return rows
+
+
+def metrics_of(rows):
+    """The numeric columns: every cell a number or empty (no sample), at least one a number; the
+    yes/no flags are not."""
+    names = [n for n in rows[0] if n not in NOT_METRICS]
+    return [n for n in names if all(r[n] == "" or number(r[n]) is not None for r in rows)
+            and any(r[n] != "" for r in rows)]
+
+
+def unique(values):
+    return list(dict.fromkeys(values))
+
+
+def metric_figure(rows, metric, title):
+    runs, profiles = unique(r["run"] for r in rows), unique(r["profile"] for r in rows)
+    value = {(r["run"], r["profile"]): number(r[metric]) for r in rows if r[metric] != ""}
+    fig, axes = new_figure(1, f"{metric} by run and network profile — {title}", sharex=False)
+    ax = axes[0]
+    width = 0.8 / len(profiles)
+    for k, profile in enumerate(profiles):
+        xs = [i + (k - (len(profiles) - 1) / 2) * width for i in range(len(runs))]
+        heights = [value.get((run, profile), 0.0) for run in runs]
+        bars = ax.bar(xs, heights, width, label=profile)
+        # each bar says its number; a run without a sample (or not run) says so instead of a 0
+        labels = [f"{value[(run, profile)]:.3g}" if (run, profile) in value else "n/a" for run in runs]
+        ax.bar_label(bars, labels, fontsize=8, padding=2)
+    ax.axhline(0.0, color="black", linewidth=0.8)
+    ax.set_xticks(range(len(runs)), runs)
+    # a group is 0.8 wide: a run alone does not fill the axes; room above the bars for their numbers
+    ax.set_xlim(-1.0, len(runs))
+    ax.margins(y=0.1)
+    ax.set_xlabel("run")
+    unit = unit_of(metric)
+    ax.set_ylabel(f"{metric} [{unit}]" if unit else metric)
+    ax.legend(title="network profile", fontsize=9, loc="upper left", bbox_to_anchor=(1.0, 1.0))
+    return fig
+
+
+def results_figures(path, title):
+    """[(metric, figure)] of the results CSV at `path`."""
+    rows = read_results(path)
+    metrics = metrics_of(rows)
+    if not metrics:
+        raise ResultsError(f"{path}: no metric column with a number")
+    return [(metric, metric_figure(rows, metric, title)) for metric in metrics]

@@ -1,0 +1,80 @@
+// The figures (docs/plots.md) as real processes: `teleop experiment` draws each run's figures and
+// one per metric, `teleop plot` draws a run's again elsewhere; png_check.py opens every PNG and
+// checks its size and that its plot area shows data. A folder without traces is an error naming it.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "process_helpers.h"
+#include "teleop/experiment/plots.h"
+
+namespace teleop::test {
+namespace {
+namespace fs = std::filesystem;
+
+// as scripts/teleop_plot/figure_style.py draws them
+constexpr const char* kWidthPx = "1200";
+constexpr const char* kHeightPx = "800";
+constexpr const char* kMinBytes = "10000";
+const std::vector<std::string> kRunFigures = {"position", "force", "tdpa_energy", "lateness", "states"};
+
+std::vector<std::string> pngs(const std::string& dir, const std::string& prefix,
+                              const std::vector<std::string>& names) {
+  std::vector<std::string> out;
+  for (const std::string& n : names) out.push_back(dir + "/" + prefix + n + ".png");
+  return out;
+}
+
+// every file exists and png_check.py finds it drawn
+void expect_drawn(const std::vector<std::string>& files) {
+  for (const std::string& f : files) EXPECT_TRUE(fs::exists(f)) << f;
+  std::vector<std::string> argv = {"/usr/bin/env", experiment::find_plot_tool().python, "-B",
+                                   source("test/integration/png_check.py"), kWidthPx, kHeightPx, kMinBytes};
+  argv.insert(argv.end(), files.begin(), files.end());
+  const ProcessResult r = run_process(argv, std::chrono::seconds(60));
+  EXPECT_EQ(r.exit_status, 0) << r.output;
+}
+
+// 2 s of the stiff wall under PFC+TDPA (so every figure has its columns): the run's five figures
+// in its folder, the metrics' beside the CSV; then `teleop plot` of that run into another folder
+TEST(PlotProcess, TheExperimentDrawsItsRunsAndMetricsAndPlotDrawsARunAgain) {
+  const std::string dir = make_temp_dir();
+  write_file(dir + "/e.yaml", "experiment:\n  name: tiny\n  duration_s: 2\n  seed: 7\n  profiles: [none]\n"
+                              "  runs:\n    - {name: pfc_tdpa, scenario: " +
+                                  source("config/scenarios/stiff_wall_pfc_tdpa.yaml") +
+                                  "}\n"
+                                  "  analysis: {settle_s: 0.5, hold_window_s: [1.5, 2.0]}\n");
+  const ProcessResult experiment =
+      run_process({bin("teleop"), "experiment", dir + "/e.yaml", "--report-dir", dir + "/out", "--domain",
+                   std::to_string(unique_domain())},
+                  std::chrono::seconds(90));
+  ASSERT_EQ(experiment.exit_status, 0) << experiment.output;
+  EXPECT_EQ(experiment.output.find("warning"), std::string::npos) << experiment.output;
+  const std::string run_dir = dir + "/out/pfc_tdpa/none";
+  // and metrics that are not zero in any run: their bars show
+  std::vector<std::string> figures = pngs(run_dir, "", kRunFigures);
+  for (const std::string& f : pngs(dir + "/out", "tiny_", {"force_felt_n", "tracking_rmse_m", "mad_rad"})) {
+    figures.push_back(f);
+  }
+  expect_drawn(figures);
+
+  const ProcessResult plot =
+      run_process({bin("teleop"), "plot", run_dir, "-o", dir + "/again"}, std::chrono::seconds(60));
+  EXPECT_EQ(plot.exit_status, 0) << plot.output;
+  for (const std::string& f : pngs(dir + "/again", "", kRunFigures)) {
+    EXPECT_NE(plot.output.find("wrote " + f), std::string::npos) << plot.output;
+    EXPECT_GT(fs::file_size(f), 10'000u) << f;
+  }
+}
+
+TEST(PlotProcess, AFolderWithoutTracesIsAnErrorNamingIt) {
+  const std::string dir = make_temp_dir();
+  write_file(dir + "/notes.csv", "run,profile\n");
+  const ProcessResult r = run_process({bin("teleop"), "plot", dir}, std::chrono::seconds(30));
+  EXPECT_EQ(r.exit_status, 1) << r.output;
+  EXPECT_NE(r.output.find("teleop plot: " + dir + ": no trace in this directory"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir + "/position.png"));
+}
+
+}  // namespace
+}  // namespace teleop::test
