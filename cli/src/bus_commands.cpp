@@ -89,10 +89,10 @@ std::optional<int> BusCommands::run() {
 int BusCommands::run_record() {
   const teleop::tools::RecordResult r = teleop::tools::record(bus_, record_options_, stderr);
   std::printf("recorded %llu samples (%.1f MB) of %zu topics in %.1f s into %s; dropped %llu (queue full), "
-              "missed upstream %llu (sequence gaps)\n",
+              "missed upstream %llu (sequence gaps); cpu %.2f s (%.1f %% of one core)\n",
               static_cast<unsigned long long>(r.messages), static_cast<double>(r.bytes) * 1e-6, r.topics.size(),
               r.seconds, record_options_.dir.c_str(), static_cast<unsigned long long>(r.dropped),
-              static_cast<unsigned long long>(r.missed));
+              static_cast<unsigned long long>(r.missed), r.cpu_s, r.seconds > 0 ? 100.0 * r.cpu_s / r.seconds : 0.0);
   return 0;
 }
 

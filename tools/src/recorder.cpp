@@ -2,6 +2,8 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <chrono>
 #include <condition_variable>
@@ -90,6 +92,13 @@ bool wanted(const RecordOptions& options, const std::string& topic) {
   return options.topics.empty() || std::find(options.topics.begin(), options.topics.end(), topic) != options.topics.end();
 }
 
+double cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const auto s = [](const timeval& t) { return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_usec) * 1e-6; };
+  return s(usage.ru_utime) + s(usage.ru_stime);
+}
+
 }  // namespace
 
 RecordResult record(const BusOptions& bus_options, const RecordOptions& options, FILE* log) {
@@ -158,6 +167,7 @@ RecordResult record(const BusOptions& bus_options, const RecordOptions& options,
   result.dropped = queue.dropped();
   result.missed = gaps.missed();
   result.seconds = static_cast<double>(monotonic_now_ns() - start_ns) * 1e-9;
+  result.cpu_s = cpu_seconds();
   for (const std::string& t : options.topics) {
     if (subscribed.count(t) == 0) std::fprintf(log, "no writer of %s appeared: not recorded\n", t.c_str());
   }

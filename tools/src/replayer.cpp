@@ -153,13 +153,19 @@ ReplayResult replay(const BusOptions& bus_options, const ReplayOptions& options,
   result.timing_error_p50_s = percentile(errors_s, 0.5);
   result.timing_error_p99_s = percentile(errors_s, 0.99);
   result.timing_error_max_s = errors_s.empty() ? 0.0 : *std::max_element(errors_s.begin(), errors_s.end());
+  std::vector<double> interval_errors_s;
+  for (size_t i = 1; i < errors_s.size(); ++i) interval_errors_s.push_back(std::abs(errors_s[i] - errors_s[i - 1]));
+  result.interval_error_p50_s = percentile(interval_errors_s, 0.5);
+  result.interval_error_p99_s = percentile(interval_errors_s, 0.99);
   return result;
 }
 
 std::string format_replay(const ReplayResult& r, const ReplayOptions& options) {
-  std::string text = fmt::format("replayed {} samples; timing error p50 {:.3f} ms p99 {:.3f} ms max {:.3f} ms\n",
-                                 r.published, r.timing_error_p50_s * 1e3, r.timing_error_p99_s * 1e3,
-                                 r.timing_error_max_s * 1e3);
+  std::string text = fmt::format(
+      "replayed {} samples; timing error p50 {:.3f} ms p99 {:.3f} ms max {:.3f} ms; interval error p50 {:.3f} ms "
+      "p99 {:.3f} ms\n",
+      r.published, r.timing_error_p50_s * 1e3, r.timing_error_p99_s * 1e3, r.timing_error_max_s * 1e3,
+      r.interval_error_p50_s * 1e3, r.interval_error_p99_s * 1e3);
   if (!options.compare_topic.empty()) {
     text += fmt::format("compare {}: {} live samples, RMSE {:.6f} rad, max error {:.6f} rad\n", options.compare_topic,
                         r.compared, r.rmse, r.max_error);

@@ -32,6 +32,8 @@ struct RecordResult {
   /// Gaps in the writers' sequence numbers: samples that never reached the recorder.
   uint64_t missed = 0;
   double seconds = 0.0;
+  /// CPU time the recorder used (user + system, all its threads) [s].
+  double cpu_s = 0.0;
   std::vector<std::string> topics;
 };
 

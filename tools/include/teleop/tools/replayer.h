@@ -36,6 +36,9 @@ struct ReplayResult {
   double timing_error_p50_s = 0.0;
   double timing_error_p99_s = 0.0;
   double timing_error_max_s = 0.0;
+  /// Interval between consecutive publications minus the recorded interval, absolute [s].
+  double interval_error_p50_s = 0.0;
+  double interval_error_p99_s = 0.0;
   /// The comparison (compare_topic): live samples compared, RMSE and largest error over joints.
   uint64_t compared = 0;
   double rmse = 0.0;
