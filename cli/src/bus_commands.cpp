@@ -42,6 +42,10 @@ void BusCommands::add_record() {
   record_->add_option("--topics", record_options_.topics, "only these topics")->delimiter(',');
   record_->add_option("-d,--duration", record_options_.duration_s, "stop after this many seconds")
       ->check(CLI::PositiveNumber);
+  record_->add_option_function<double>(
+             "--max-mb", [this](double mb) { record_options_.max_bytes = static_cast<int64_t>(mb * 1e6); },
+             "stop with an error once the recording would grow beyond this many MB (as on a full disk)")
+      ->check(CLI::Range(0.1, 1e9));
   add_bus_options(record_);
 }
 

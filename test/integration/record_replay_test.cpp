@@ -43,5 +43,19 @@ TEST(RecordReplay, ARecorderKilledWithSigkillLeavesAReadableRecordingShortOfAtMo
   EXPECT_NE(replay.output.find(cut + "/killed_0.db3"), std::string::npos) << replay.output;
 }
 
+TEST(RecordReplay, AFullDiskEndsTheRecordingWithAClearErrorAndKeepsWhatItHad) {
+  const std::string dir = make_temp_dir();
+  const std::string bag = dir + "/capped";
+  const int domain = unique_domain();
+  RunningProcess leader(node(dir, "leader", domain, 30));
+  // SQLite reports the cap as it reports a full disk (SQLITE_FULL)
+  const ProcessResult record = run_process(tool({"record", "-o", bag, "--max-mb", "0.5", "--duration", "25"}, domain), 40s);
+  EXPECT_EQ(record.exit_status, 1) << record.output;
+  EXPECT_NE(record.output.find("disk full"), std::string::npos) << record.output;
+  EXPECT_NE(record.output.find("what was recorded before stays readable in " + bag), std::string::npos) << record.output;
+  const bag::BagReader reader(bag);
+  EXPECT_GT(reader.message_count(), 100u);
+}
+
 }  // namespace
 }  // namespace teleop::test

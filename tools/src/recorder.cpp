@@ -99,78 +99,133 @@ double cpu_seconds() {
   return s(usage.ru_utime) + s(usage.ru_stime);
 }
 
-}  // namespace
 
-RecordResult record(const BusOptions& bus_options, const RecordOptions& options, FILE* log) {
-  DiskQueue queue(options.queue_capacity);  // outlives the bus: its readers push until it is gone
-  bag::BagWriter bag(bag::BagWriterOptions{options.dir});
-  auto bus = std::make_unique<Bus>(bus_options, "teleop_record");
-  std::set<std::string> subscribed;
-  RecordResult result;
+// One recording: the bus's readers feed the queue, a disk thread empties it into the bag. A disk
+// error (a full disk, the size cap) ends the recording; what was committed stays readable.
+class Recording {
+ public:
+  Recording(const BusOptions& bus_options, const RecordOptions& options, FILE* log)
+      : options_(options),
+        log_(log),
+        queue_(options.queue_capacity),
+        bag_(bag::BagWriterOptions{options.dir, 200'000'000, 1'000'000'000, options.max_bytes}),
+        bus_(std::make_unique<Bus>(bus_options, "teleop_record")),
+        disk_([this] { disk_loop(); }) {}
 
-  std::mutex bag_mutex;  // the disk thread writes, this one adds topics
-  std::atomic<bool> stop_disk{false};
-  GapCounter gaps;
-  std::vector<Received> batch;
-  const auto write_batch = [&](std::chrono::milliseconds wait) {
-    queue.take(batch, wait);
-    std::lock_guard lock(bag_mutex);
-    for (const Received& r : batch) {
-      bag.write(r.topic_id, r.recv_ns, r.recv_mono_ns, r.sample.writer.bytes, r.sample.cdr.data(), r.sample.cdr.size());
-      gaps.add(r.topic_id, r.sample);
-    }
-    if (batch.empty()) bag.poll();  // quiet: commit on time all the same, so a kill loses at most a period
-  };
-  std::thread disk([&] {
-    while (!stop_disk.load()) write_batch(std::chrono::milliseconds(100));
-  });
-
-  const int64_t start_ns = monotonic_now_ns();
-  const auto subscribe = [&](const std::string& name, const transport::SampleType& type) {
-    const transport::QosPreset qos = transport::topic_qos(name);
-    const int id = [&] {
-      std::lock_guard lock(bag_mutex);
-      return bag.add_topic({name, type.bag_name, qos_yaml(qos)});
-    }();
-    bus->participant().make_raw_reader(name, type, qos, [&queue, id](const transport::RawSample& s) {
-      queue.push({id, s.reception_ns, monotonic_now_ns(), s});
-    });
-    subscribed.insert(name);
-    result.topics.push_back(name);
-    std::fprintf(log, "recording %s (%s)\n", name.c_str(), type.bag_name.c_str());
-    std::fflush(log);
-  };
-  // the fixed topics at once, so that a node starting after the recorder loses no first sample
-  for (const transport::KnownTopic& k : transport::known_topics()) {
-    if (wanted(options, k.name)) subscribe(k.name, *k.type);
+  ~Recording() {
+    if (disk_.joinable()) stop_disk();
   }
+
+  // the fixed topics at once, so that a node starting after the recorder loses no first sample
+  void subscribe_known_topics() {
+    for (const transport::KnownTopic& k : transport::known_topics()) {
+      if (wanted(options_, k.name)) subscribe(k.name, *k.type);
+    }
+  }
+
   // the families (one topic per object, per contact pair) as discovery finds them
-  const auto subscribe_new_topics = [&] {
-    for (const TopicView& t : bus->topics()) {
-      if (t.writers.empty() || subscribed.count(t.name) > 0 || !wanted(options, t.name)) continue;
+  void subscribe_new_topics() {
+    for (const TopicView& t : bus_->topics()) {
+      if (t.writers.empty() || subscribed_.count(t.name) > 0 || !wanted(options_, t.name)) continue;
       const transport::SampleType* type = t.types.size() == 1 ? transport::find_sample_type(t.types.front()) : nullptr;
       if (type != nullptr) subscribe(t.name, *type);  // not ours: nothing to decode it with later
     }
-  };
-  while (!runtime::shutdown_requested()) {
-    subscribe_new_topics();
+  }
+
+  bool failed() const { return failed_.load(); }
+
+  /// Stops the bus, writes what is queued, closes the bag. Throws the disk's error, if any.
+  RecordResult finish() {
+    bus_.reset();  // no sample arrives after this
+    stop_disk();
+    if (!failed()) guarded([&] { write_batch(std::chrono::milliseconds(0)); });  // what was still queued
+    guarded([&] { bag_.close(); });
+    if (failed()) throw bag::BagError(error_ + "; what was recorded before stays readable in " + options_.dir);
+    RecordResult result;
+    result.messages = bag_.stats().messages;
+    result.bytes = bag_.stats().bytes;
+    result.dropped = queue_.dropped();
+    result.missed = gaps_.missed();
+    result.topics.assign(subscribed_.begin(), subscribed_.end());
+    for (const std::string& t : options_.topics) {
+      if (subscribed_.count(t) == 0) std::fprintf(log_, "no writer of %s appeared: not recorded\n", t.c_str());
+    }
+    return result;
+  }
+
+ private:
+  void subscribe(const std::string& name, const transport::SampleType& type) {
+    const transport::QosPreset qos = transport::topic_qos(name);
+    const int id = [&] {
+      std::lock_guard lock(bag_mutex_);
+      return bag_.add_topic({name, type.bag_name, qos_yaml(qos)});
+    }();
+    bus_->participant().make_raw_reader(name, type, qos, [queue = &queue_, id](const transport::RawSample& s) {
+      queue->push({id, s.reception_ns, monotonic_now_ns(), s});
+    });
+    subscribed_.insert(name);
+    std::fprintf(log_, "recording %s (%s)\n", name.c_str(), type.bag_name.c_str());
+    std::fflush(log_);
+  }
+
+  void write_batch(std::chrono::milliseconds wait) {
+    queue_.take(batch_, wait);
+    std::lock_guard lock(bag_mutex_);
+    for (const Received& r : batch_) {
+      bag_.write(r.topic_id, r.recv_ns, r.recv_mono_ns, r.sample.writer.bytes, r.sample.cdr.data(), r.sample.cdr.size());
+      gaps_.add(r.topic_id, r.sample);
+    }
+    if (batch_.empty()) bag_.poll();  // quiet: commit on time all the same, so a kill loses at most a period
+  }
+
+  void disk_loop() {
+    while (!stop_.load() && !failed()) guarded([&] { write_batch(std::chrono::milliseconds(100)); });
+  }
+
+  // a disk error is kept (the first one) and ends the recording instead of the process
+  template <typename F>
+  void guarded(F&& f) {
+    try {
+      f();
+    } catch (const std::exception& e) {
+      if (!failed_.exchange(true)) error_ = e.what();
+    }
+  }
+
+  void stop_disk() {
+    stop_.store(true);
+    disk_.join();
+  }
+
+  const RecordOptions& options_;
+  FILE* log_;
+  DiskQueue queue_;  // before the bus: its readers push until the bus is gone
+  bag::BagWriter bag_;
+  std::mutex bag_mutex_;  // the disk thread writes, the recording's thread adds topics
+  GapCounter gaps_;
+  std::vector<Received> batch_;
+  std::set<std::string> subscribed_;
+  std::atomic<bool> stop_{false};
+  std::atomic<bool> failed_{false};
+  std::string error_;
+  std::unique_ptr<Bus> bus_;
+  std::thread disk_;
+};
+
+}  // namespace
+
+RecordResult record(const BusOptions& bus_options, const RecordOptions& options, FILE* log) {
+  const int64_t start_ns = monotonic_now_ns();
+  Recording recording(bus_options, options, log);
+  recording.subscribe_known_topics();
+  while (!runtime::shutdown_requested() && !recording.failed()) {
+    recording.subscribe_new_topics();
     if (options.duration_s > 0 && monotonic_now_ns() - start_ns >= static_cast<int64_t>(options.duration_s * 1e9)) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
-  bus.reset();  // no sample arrives after this
-  stop_disk.store(true);
-  disk.join();
-  write_batch(std::chrono::milliseconds(0));  // what was still queued
-  bag.close();
-  result.messages = bag.stats().messages;
-  result.bytes = bag.stats().bytes;
-  result.dropped = queue.dropped();
-  result.missed = gaps.missed();
+  RecordResult result = recording.finish();
   result.seconds = static_cast<double>(monotonic_now_ns() - start_ns) * 1e-9;
   result.cpu_s = cpu_seconds();
-  for (const std::string& t : options.topics) {
-    if (subscribed.count(t) == 0) std::fprintf(log, "no writer of %s appeared: not recorded\n", t.c_str());
-  }
   return result;
 }
 

@@ -22,6 +22,9 @@ struct RecordOptions {
   /// Samples waiting for the disk at most; beyond, a sample is dropped and counted (memory stays
   /// bounded when the disk cannot keep up).
   size_t queue_capacity = 1 << 17;
+  /// Stop with an error once the database would grow beyond this [bytes], as on a full disk
+  /// (what was recorded stays readable); 0: no cap.
+  int64_t max_bytes = 0;
 };
 
 struct RecordResult {
@@ -37,7 +40,8 @@ struct RecordResult {
   std::vector<std::string> topics;
 };
 
-/// Records until interrupted or the duration is over. Throws bag::BagError or ConfigError.
+/// Records until interrupted or the duration is over. Throws bag::BagError (a full disk, the size
+/// cap: after closing the recording, which stays readable) or ConfigError.
 RecordResult record(const BusOptions& bus, const RecordOptions& options, FILE* log);
 
 }  // namespace teleop::tools
