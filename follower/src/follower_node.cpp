@@ -72,7 +72,14 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<robot::
   // until a command arrives, hold the pose the robot is in, from the torque it holds it with
   hold_current_pose(active_, config_.hold_stiffness_nm_per_rad, config_.hold_damping_nms_per_rad);
   limiter_.reset(arm_.tau_measured_nm);
-  if (config.teleoperation && runtime::is_cartesian(config.teleoperation->architecture)) {
+  // the leader commands one of the two streams: the other is not waited for
+  const bool cartesian = config.teleoperation && runtime::is_cartesian(config.teleoperation->architecture);
+  if (cartesian) {
+    joint_commands_.mark_optional();
+  } else {
+    cartesian_commands_.mark_optional();
+  }
+  if (cartesian) {
     // pfc observes its energy balance too, only pfc_tdpa corrects it
     const bool correct = config.teleoperation->architecture == runtime::Architecture::kPfcTdpa;
     const double h = 1.0 / context.node.rate_hz;

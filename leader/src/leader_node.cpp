@@ -42,6 +42,7 @@ LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context
     command_kinematics_ = std::make_unique<ArmKinematics>(config.arm_model, config.ee_site);
   }
   const Architecture a = config.teleoperation.architecture;
+  if (a != Architecture::kMmt) twin_feedback_.mark_optional();  // only MMT renders the twin's forces
   if (runtime::is_cartesian(a)) {
     cartesian_command_.emplace(context.participant, transport::arm_topic(transport::topics::kLeaderCartesian, config.arm),
                                context.node.name);

@@ -44,7 +44,11 @@ void FlowWatch::run() {
   std::vector<int32_t> writers(flows_.size());
   std::vector<FlowEvent> events;
   while (!stop_.load()) {
-    for (size_t i = 0; i < flows_.size(); ++i) writers[i] = flows_[i].status->matched.load(std::memory_order_relaxed);
+    for (size_t i = 0; i < flows_.size(); ++i) {
+      const transport::EndpointStatus& s = *flows_[i].status;
+      // a flow the node does not need counts as served: nothing to wait for
+      writers[i] = s.awaited.load(std::memory_order_relaxed) ? s.matched.load(std::memory_order_relaxed) : 1;
+    }
     events.clear();
     tracker_.update(monotonic_now_ns(), writers, events);
     for (const FlowEvent& e : events) log(e);

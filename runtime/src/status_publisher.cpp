@@ -37,6 +37,7 @@ void StatusPublisher::fill_flows() {
   for (size_t i = 0; i < flows_.size(); ++i) {
     const transport::EndpointStatus& status = *flows_[i];
     msg::FlowStatus& f = out[i];
+    f.awaited(status.awaited.load(std::memory_order_relaxed));
     f.writers(status.matched.load(std::memory_order_relaxed));
     f.received(status.received.load(std::memory_order_relaxed));
     f.lost(status.lost.load(std::memory_order_relaxed));

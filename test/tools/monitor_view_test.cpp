@@ -39,14 +39,17 @@ TEST(MonitorView, ShowsStateFaultsAndTheLoopRateMeasuredBetweenStatuses) {
 TEST(MonitorView, SaysWhichFlowWaitsForAWriterAndHowMuchAnotherLost) {
   MonitorView view;
   msg::NodeStatus a = status("leader", msg::STATE_STARTING, 0, 0);
-  a.flows().resize(2);
+  a.flows().resize(3);
   a.flows()[0].topic("teleop/follower/joint_state");
+  a.flows()[0].awaited(true);
   a.flows()[0].writers(0);
   a.flows()[0].age_ns(-1);
   a.flows()[1].topic("teleop/twin/feedback_torque");
   a.flows()[1].writers(1);
   a.flows()[1].received(900);
   a.flows()[1].lost(100);
+  a.flows()[2].topic("teleop/leader/cartesian_command");  // the node does not need it
+  a.flows()[2].awaited(false);
   view.update(a, 0);
   msg::NodeStatus b = a;
   b.header().stamp_mono_ns(1000 * kMs);
@@ -59,6 +62,7 @@ TEST(MonitorView, SaysWhichFlowWaitsForAWriterAndHowMuchAnotherLost) {
   EXPECT_NE(table.find("teleop/follower/joint_state"), std::string::npos) << table;
   EXPECT_NE(table.find("WAITING FOR A WRITER  age never"), std::string::npos) << table;
   EXPECT_NE(table.find("1 writer  age 2.00 ms  latency 17.50 ms  loss 1.0 %"), std::string::npos) << table;
+  EXPECT_NE(table.find("teleop/leader/cartesian_command    no writer (optional)"), std::string::npos) << table;
 }
 
 TEST(MonitorView, ANodeWhoseStatusStopsIsShownSilent) {

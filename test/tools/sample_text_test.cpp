@@ -69,13 +69,16 @@ TEST(SampleText, ListsOfStructsAreYamlSequences) {
   s.links().back().lost(7);
   s.flows().emplace_back();
   s.flows().back().topic("teleop/follower/joint_state");
+  s.flows().back().awaited(true);
   s.flows().back().writers(0);
   const auto cdr = serialize(s);
   const std::string text = sample_text(type_of<msg::NodeStatus>(), cdr);
   EXPECT_NE(text.find("state: safe_hold\n"), std::string::npos) << text;
   EXPECT_NE(text.find("fault_codes: [peer_lost]\n"), std::string::npos) << text;
   EXPECT_NE(text.find("links:\n  - peer: follower\n    profile: \n"), std::string::npos) << text;
-  EXPECT_NE(text.find("flows:\n  - topic: teleop/follower/joint_state\n    writers: 0\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("flows:\n  - topic: teleop/follower/joint_state\n    awaited: true\n    writers: 0\n"),
+            std::string::npos)
+      << text;
   EXPECT_EQ(sample_text(type_of<msg::NodeStatus>(), cdr, "links[0].lost"), "7\n");
 }
 

@@ -50,6 +50,7 @@ std::string pct(double p) { return std::isfinite(p) ? fmt::format("{:.1f} %", p)
 
 struct FlowNumbers {
   std::string topic;
+  bool awaited;
   int writers;
   std::string age, latency, loss;
 };
@@ -57,7 +58,7 @@ struct FlowNumbers {
 FlowNumbers flow_numbers(const msg::FlowStatus& f, const msg::FlowStatus* before) {
   const double loss = before ? loss_percent(f.received(), f.lost(), before->received(), before->lost())
                              : loss_percent(f.received(), f.lost(), 0, 0);
-  return {f.topic().c_str(), f.writers(), f.age_ns() < 0 ? "never" : ms(static_cast<double>(f.age_ns())),
+  return {f.topic().c_str(), f.awaited(), f.writers(), f.age_ns() < 0 ? "never" : ms(static_cast<double>(f.age_ns())),
           f.received() > 0 ? ms(static_cast<double>(f.latency_ns())) : "-", pct(loss)};
 }
 
@@ -116,7 +117,8 @@ std::string MonitorView::table(int64_t now_ns, int domain_id) const {
       const FlowNumbers n = flow_numbers(f, node.has_previous ? flow_named(node.previous, f.topic().c_str()) : nullptr);
       text += fmt::format("   <- {:<34} {}  age {}  latency {}  loss {}\n", n.topic,
                           n.writers > 0 ? fmt::format("{} writer{}", n.writers, n.writers == 1 ? "" : "s")
-                                        : std::string("WAITING FOR A WRITER"),
+                          : n.awaited   ? std::string("WAITING FOR A WRITER")
+                                        : std::string("no writer (optional)"),
                           n.age, n.latency, n.loss);
     }
     for (const auto& l : s.links()) {
@@ -141,7 +143,8 @@ std::string MonitorView::lines(int64_t now_ns) const {
     if (s.can_bus_state().size() > 0) text += fmt::format(" can={}", s.can_bus_state().c_str());
     for (const auto& f : s.flows()) {
       const FlowNumbers n = flow_numbers(f, node.has_previous ? flow_named(node.previous, f.topic().c_str()) : nullptr);
-      text += fmt::format(" flow[{} writers={} age={} latency={} loss={}]", n.topic, n.writers, n.age, n.latency, n.loss);
+      text += fmt::format(" flow[{} writers={}{} age={} latency={} loss={}]", n.topic, n.writers,
+                          n.awaited ? "" : " optional", n.age, n.latency, n.loss);
     }
     for (const auto& l : s.links()) {
       const LinkNumbers n = link_numbers(l, node.has_previous ? link_to(node.previous, l.peer().c_str()) : nullptr);

@@ -159,6 +159,7 @@ void walk(const msg::LinkStatistics& l, W& w) {
 
 void walk(const msg::FlowStatus& f, W& w) {
   w.value("topic", std::string_view(f.topic().c_str()));
+  w.value("awaited", f.awaited());
   w.value("writers", static_cast<int64_t>(f.writers()));
   w.value("received", static_cast<uint64_t>(f.received()));
   w.value("lost", static_cast<uint64_t>(f.lost()));

@@ -18,6 +18,9 @@ struct EndpointStatus {
   std::atomic<uint64_t> deadline_missed{0};
 
   // What the node made of a reader's flow (readers only), for NodeStatus and the tools.
+  /// Whether the node needs a writer on this flow to do its work (a reader of an optional or
+  /// alternative input is not awaited: nobody is told it waits for one).
+  std::atomic<bool> awaited{false};
   /// When DDS last had data for the reader (CLOCK_MONOTONIC ns, 0: never): a Fast DDS thread sets it.
   std::atomic<int64_t> last_data_mono_ns{0};
   /// Samples the node took, and the gaps in their sequence numbers within sessions (Subscription).

@@ -62,6 +62,9 @@ class Reader {
   }
   bool valid() const { return reader_ != nullptr; }
 
+  /// Whether the node needs a writer on this flow (EndpointStatus::awaited). Setup time.
+  void set_awaited(bool awaited) { status_->awaited.store(awaited, std::memory_order_relaxed); }
+
   /// Publishes what the node made of the flow (received, lost, smoothed latency) for NodeStatus
   /// and the tools. Real-time safe (relaxed atomic stores).
   void report_flow(uint64_t received, uint64_t lost, int64_t latency_ns) {

@@ -19,8 +19,15 @@ template <typename T>
 class Subscription {
  public:
   /// Setup time: creates the reader. `policy` says when another writer may take the stream over.
+  /// The node needs a writer on the topic (it is awaited, see mark_optional()).
   Subscription(Participant& participant, const TopicSpec<T>& topic, StreamSessionPolicy policy = {})
-      : topic_name_(topic.name), reader_(participant.make_reader(topic)), session_(policy) {}
+      : topic_name_(topic.name), reader_(participant.make_reader(topic)), session_(policy) {
+    reader_.set_awaited(true);
+  }
+
+  /// The node works without a writer on this topic (an alternative or optional input): nobody
+  /// is told it waits for one. Setup time.
+  void mark_optional() { reader_.set_awaited(false); }
 
   /// Takes every sample that arrived since the last poll, updates the statistics and keeps the
   /// newest of the followed writer as `latest()`. Non-blocking and real-time safe. Returns the
