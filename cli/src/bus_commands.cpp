@@ -13,8 +13,10 @@ BusCommands::BusCommands(CLI::App& app) : app_(&app) {
   info_->add_option("topic", topic_, "topic name, e.g. teleop/leader/joint_command")->required();
   echo_ = topic->add_subcommand("echo", "print the samples of a topic as YAML");
   echo_->add_option("topic", echo_options_.topic, "topic name")->required();
-  echo_->add_option("--field", echo_options_.field, "print only this field, a dotted path (header.seq, q_rad, links[0].peer)");
-  echo_->add_flag("--once", [this](int64_t) { echo_options_.count = 1; }, "print one sample and exit");
+  echo_->add_option("--field", echo_options_.field,
+                    "print only this field, a dotted path (header.seq, q_rad, links[0].peer)");
+  echo_->add_flag(
+      "--once", [this](int64_t) { echo_options_.count = 1; }, "print one sample and exit");
   echo_->add_option("-n,--count", echo_options_.count, "print this many samples and exit");
   hz_ = topic->add_subcommand("hz", "rate, period spread, sample age and loss of a topic, once a second");
   hz_->add_option("topic", hz_options_.topic, "topic name")->required();
@@ -37,14 +39,16 @@ BusCommands::BusCommands(CLI::App& app) : app_(&app) {
 }
 
 void BusCommands::add_record() {
-  record_ = app_->add_subcommand("record", "record the bus (every teleop topic, or those given) into a rosbag2-layout folder");
+  record_ = app_->add_subcommand("record",
+                                 "record the bus (every teleop topic, or those given) into a rosbag2-layout folder");
   record_->add_option("-o,--output", record_options_.dir, "the recording's folder (must not exist yet)")->required();
   record_->add_option("--topics", record_options_.topics, "only these topics")->delimiter(',');
   record_->add_option("-d,--duration", record_options_.duration_s, "stop after this many seconds")
       ->check(CLI::PositiveNumber);
-  record_->add_option_function<double>(
-             "--max-mb", [this](double mb) { record_options_.max_bytes = static_cast<int64_t>(mb * 1e6); },
-             "stop with an error once the recording would grow beyond this many MB (as on a full disk)")
+  record_
+      ->add_option_function<double>(
+          "--max-mb", [this](double mb) { record_options_.max_bytes = static_cast<int64_t>(mb * 1e6); },
+          "stop with an error once the recording would grow beyond this many MB (as on a full disk)")
       ->check(CLI::Range(0.1, 1e9));
   add_bus_options(record_);
 }
@@ -53,12 +57,15 @@ void BusCommands::add_replay() {
   replay_ = app_->add_subcommand("replay", "publish a recording again with its recorded timing");
   replay_->add_option("recording", replay_options_.dir, "the recording's folder")->required();
   replay_->add_option("--topics", replay_options_.topics, "only these topics")->delimiter(',');
-  replay_->add_option("--rate", replay_options_.rate, "speed factor (2: twice as fast)")->check(CLI::Range(0.01, 100.0));
+  replay_->add_option("--rate", replay_options_.rate, "speed factor (2: twice as fast)")
+      ->check(CLI::Range(0.01, 100.0));
   replay_->add_flag("--loop", replay_options_.loop, "start again at the end, until interrupted");
-  replay_->add_flag("--keep-stamps", replay_options_.keep_stamps,
-                    "publish the recorded header stamps (default: restamped now, so receivers do not refuse them as stale)");
-  replay_->add_option("--wait-for-readers", replay_options_.wait_for_readers_s,
-                      "seconds to wait for a reader of every replayed topic before starting (default 5)")
+  replay_->add_flag(
+      "--keep-stamps", replay_options_.keep_stamps,
+      "publish the recorded header stamps (default: restamped now, so receivers do not refuse them as stale)");
+  replay_
+      ->add_option("--wait-for-readers", replay_options_.wait_for_readers_s,
+                   "seconds to wait for a reader of every replayed topic before starting (default 5)")
       ->check(CLI::Range(0.0, 600.0));
   replay_->add_option("--compare", replay_options_.compare_topic,
                       "a recorded JointState topic to compare with its live samples during the replay (RMSE)");
@@ -66,11 +73,14 @@ void BusCommands::add_replay() {
 }
 
 void BusCommands::add_bus_options(CLI::App* command) {
-  command->add_option("-c,--config", bus_.config_path, "join the bus as this node config says (domain, discovery, security)")
+  command
+      ->add_option("-c,--config", bus_.config_path,
+                   "join the bus as this node config says (domain, discovery, security)")
       ->check(CLI::ExistingFile);
   command->add_option("--domain", bus_.domain_id, "DDS domain id (overrides the config)")->check(CLI::Range(0, 232));
-  command->add_option("--discovery-time", bus_.discovery_s,
-                      "seconds to listen to discovery before answering or giving up on a topic (default 2)")
+  command
+      ->add_option("--discovery-time", bus_.discovery_s,
+                   "seconds to listen to discovery before answering or giving up on a topic (default 2)")
       ->check(CLI::Range(0.1, 600.0));
 }
 
@@ -92,11 +102,12 @@ std::optional<int> BusCommands::run() {
 
 int BusCommands::run_record() {
   const teleop::tools::RecordResult r = teleop::tools::record(bus_, record_options_, stderr);
-  std::printf("recorded %llu samples (%.1f MB) of %zu topics in %.1f s into %s; dropped %llu (queue full), "
-              "missed upstream %llu (sequence gaps); cpu %.2f s (%.1f %% of one core)\n",
-              static_cast<unsigned long long>(r.messages), static_cast<double>(r.bytes) * 1e-6, r.topics.size(),
-              r.seconds, record_options_.dir.c_str(), static_cast<unsigned long long>(r.dropped),
-              static_cast<unsigned long long>(r.missed), r.cpu_s, r.seconds > 0 ? 100.0 * r.cpu_s / r.seconds : 0.0);
+  std::printf(
+      "recorded %llu samples (%.1f MB) of %zu topics in %.1f s into %s; dropped %llu (queue full), "
+      "missed upstream %llu (sequence gaps); cpu %.2f s (%.1f %% of one core)\n",
+      static_cast<unsigned long long>(r.messages), static_cast<double>(r.bytes) * 1e-6, r.topics.size(), r.seconds,
+      record_options_.dir.c_str(), static_cast<unsigned long long>(r.dropped),
+      static_cast<unsigned long long>(r.missed), r.cpu_s, r.seconds > 0 ? 100.0 * r.cpu_s / r.seconds : 0.0);
   return 0;
 }
 

@@ -27,8 +27,7 @@ void FlowWaitTracker::update(int64_t now_ns, const std::vector<int32_t>& writers
   }
 }
 
-FlowWatch::FlowWatch(const transport::Participant& participant, std::string node_name, int domain_id,
-                     int64_t grace_ns)
+FlowWatch::FlowWatch(const transport::Participant& participant, std::string node_name, int domain_id, int64_t grace_ns)
     : flows_(participant.reader_flows()),
       node_name_(std::move(node_name)),
       domain_id_(domain_id),

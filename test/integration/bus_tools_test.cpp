@@ -21,7 +21,7 @@ class BusToolsTest : public ::testing::Test {
   std::string domain = std::to_string(unique_domain());
 
   std::vector<std::string> node(const std::string& role, double seconds) const {
-    return {bin("teleop_" + role), "--config", config_copy(dir, role + ".yaml", {}), "--domain", domain, "--duration",
+    return {bin("teleop_" + role),  "--config", config_copy(dir, role + ".yaml", {}), "--domain", domain, "--duration",
             std::to_string(seconds)};
   }
   ProcessResult tool(std::vector<std::string> args, std::chrono::seconds timeout = 30s) const {
@@ -61,7 +61,10 @@ TEST_F(BusToolsTest, TopicListEchoAndHzSeeTheNodesTopics) {
 
   const ProcessResult list = tool({"topic", "list", "--verbose"});
   ASSERT_EQ(list.exit_status, 0) << list.output;
-  EXPECT_TRUE(std::regex_search(list.output, std::regex(R"(teleop/leader/joint_command +teleop::msg::JointCommand +1 writer, 1 reader +\(from leader to follower\))")))
+  EXPECT_TRUE(std::regex_search(
+      list.output,
+      std::regex(
+          R"(teleop/leader/joint_command +teleop::msg::JointCommand +1 writer, 1 reader +\(from leader to follower\))")))
       << list.output;
   EXPECT_TRUE(std::regex_search(list.output, std::regex(R"(teleop/follower/joint_state +teleop::msg::JointState)")))
       << list.output;
@@ -114,8 +117,9 @@ TEST_F(BusToolsTest, MonitorShowsEveryNodeAndTheFaultAKilledPeerCauses) {
   EXPECT_NE(monitor.output().find("flow[teleop/leader/joint_command writers=1"), std::string::npos) << monitor.output();
   leader.stop(SIGKILL, 5s);
   EXPECT_TRUE(monitor.wait_for_output("node=leader role=leader state=SILENT", 10s)) << monitor.output();
-  EXPECT_TRUE(std::regex_search(monitor.output(),
-                                std::regex(R"(node=follower role=follower state=safe_hold faults=[a-z_,]*(stale_input|peer_lost))")))
+  EXPECT_TRUE(std::regex_search(
+      monitor.output(),
+      std::regex(R"(node=follower role=follower state=safe_hold faults=[a-z_,]*(stale_input|peer_lost))")))
       << monitor.output();
   EXPECT_EQ(monitor.stop(SIGINT, 10s), 0);
 }
@@ -128,7 +132,8 @@ TEST_F(BusToolsTest, ANodeSaysWhichWriterItWaitsForAndWhenItAppears) {
   EXPECT_EQ(follower.output().find("waiting for a writer on teleop/leader/cartesian_command"), std::string::npos);
   EXPECT_EQ(follower.output().find("waiting for a writer on teleop/reset"), std::string::npos);
   RunningProcess leader(node("leader", 10));
-  EXPECT_TRUE(follower.wait_for_output("a writer on teleop/leader/joint_command appeared after", 15s)) << follower.output();
+  EXPECT_TRUE(follower.wait_for_output("a writer on teleop/leader/joint_command appeared after", 15s))
+      << follower.output();
 }
 
 }  // namespace

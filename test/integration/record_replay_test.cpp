@@ -8,9 +8,9 @@
 #include <fstream>
 #include <regex>
 
-#include "tool_processes.h"
 #include "teleop/bag/bag_reader.h"
 #include "teleop/common/clock.h"
+#include "tool_processes.h"
 
 namespace teleop::test {
 namespace {
@@ -49,10 +49,12 @@ TEST(RecordReplay, AFullDiskEndsTheRecordingWithAClearErrorAndKeepsWhatItHad) {
   const int domain = unique_domain();
   RunningProcess leader(node(dir, "leader", domain, 30));
   // SQLite reports the cap as it reports a full disk (SQLITE_FULL)
-  const ProcessResult record = run_process(tool({"record", "-o", bag, "--max-mb", "0.5", "--duration", "25"}, domain), 40s);
+  const ProcessResult record =
+      run_process(tool({"record", "-o", bag, "--max-mb", "0.5", "--duration", "25"}, domain), 40s);
   EXPECT_EQ(record.exit_status, 1) << record.output;
   EXPECT_NE(record.output.find("disk full"), std::string::npos) << record.output;
-  EXPECT_NE(record.output.find("what was recorded before stays readable in " + bag), std::string::npos) << record.output;
+  EXPECT_NE(record.output.find("what was recorded before stays readable in " + bag), std::string::npos)
+      << record.output;
   const bag::BagReader reader(bag);
   EXPECT_GT(reader.message_count(), 100u);
 }

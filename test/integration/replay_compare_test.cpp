@@ -4,8 +4,8 @@
 
 #include <regex>
 
-#include "tool_processes.h"
 #include "teleop/bag/bag_reader.h"
+#include "tool_processes.h"
 
 namespace teleop::test {
 namespace {
@@ -24,9 +24,9 @@ TEST(RecordReplay, TheLeadersCommandsReplayedMoveAFreshFollowerAsTheRecordedOneM
   const std::string dir = make_temp_dir();
   const std::string bag = dir + "/run";
   const int recorded_domain = unique_domain();
-  RunningProcess recorder(tool({"record", "-o", bag, "--duration", "9", "--topics",
-                                "teleop/leader/joint_command,teleop/follower/joint_state"},
-                               recorded_domain));
+  RunningProcess recorder(tool(
+      {"record", "-o", bag, "--duration", "9", "--topics", "teleop/leader/joint_command,teleop/follower/joint_state"},
+      recorded_domain));
   recorder.run_for(1000ms);  // the recorder is on the bus before the nodes start
   {
     RunningProcess follower(node(dir, "follower", recorded_domain, 7));
@@ -39,10 +39,10 @@ TEST(RecordReplay, TheLeadersCommandsReplayedMoveAFreshFollowerAsTheRecordedOneM
 
   const int replay_domain = unique_domain();
   RunningProcess fresh(node(dir, "follower", replay_domain, 15));
-  const ProcessResult replay = run_process(tool({"replay", bag, "--topics", "teleop/leader/joint_command", "--compare",
-                                                 "teleop/follower/joint_state"},
-                                                replay_domain),
-                                           40s);
+  const ProcessResult replay = run_process(
+      tool({"replay", bag, "--topics", "teleop/leader/joint_command", "--compare", "teleop/follower/joint_state"},
+           replay_domain),
+      40s);
   ASSERT_EQ(replay.exit_status, 0) << replay.output;
   std::smatch m;
   ASSERT_TRUE(std::regex_search(replay.output, m, std::regex(R"(replayed ([0-9]+) samples)"))) << replay.output;
@@ -55,8 +55,9 @@ TEST(RecordReplay, TheLeadersCommandsReplayedMoveAFreshFollowerAsTheRecordedOneM
   }
   EXPECT_GT(commands, 1000u);
   EXPECT_EQ(std::stoull(m[1]), commands) << "every recorded command is published once";
-  ASSERT_TRUE(std::regex_search(replay.output, m,
-                                std::regex(R"(compare teleop/follower/joint_state: ([0-9]+) live samples, RMSE ([0-9.]+) rad)")))
+  ASSERT_TRUE(std::regex_search(
+      replay.output, m,
+      std::regex(R"(compare teleop/follower/joint_state: ([0-9]+) live samples, RMSE ([0-9.]+) rad)")))
       << replay.output;
   EXPECT_GT(std::stoull(m[1]), 1000u) << replay.output;
   EXPECT_LT(std::stod(m[2]), kRmseBoundRad) << replay.output;

@@ -10,8 +10,13 @@ namespace teleop::test {
 
 /// teleop_<role> with the shipped config (copied into `dir`) for `seconds` on `domain`.
 inline std::vector<std::string> node(const std::string& dir, const std::string& role, int domain, double seconds) {
-  return {bin("teleop_" + role), "--config", config_copy(dir, role + ".yaml", {}), "--domain", std::to_string(domain),
-          "--duration", std::to_string(seconds)};
+  return {bin("teleop_" + role),
+          "--config",
+          config_copy(dir, role + ".yaml", {}),
+          "--domain",
+          std::to_string(domain),
+          "--duration",
+          std::to_string(seconds)};
 }
 
 /// teleop ARGS --domain DOMAIN

@@ -17,11 +17,11 @@ int run_monitor(const BusOptions& options, const MonitorOptions& monitor, FILE* 
   std::mutex mutex;
   MonitorView view;
   Bus bus(options, "teleop_monitor");
-  auto reader = bus.participant().make_reader(transport::topics::kNodeStatus,
-                                              std::function<void(const msg::NodeStatus&)>([&](const msg::NodeStatus& s) {
-                                                std::lock_guard lock(mutex);
-                                                view.update(s, monotonic_now_ns());
-                                              }));
+  auto reader = bus.participant().make_reader(
+      transport::topics::kNodeStatus, std::function<void(const msg::NodeStatus&)>([&](const msg::NodeStatus& s) {
+        std::lock_guard lock(mutex);
+        view.update(s, monotonic_now_ns());
+      }));
   (void)reader;
   const int64_t start_ns = monotonic_now_ns();
   const int64_t period_ns = static_cast<int64_t>(monitor.refresh_s * 1e9);

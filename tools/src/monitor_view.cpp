@@ -58,8 +58,12 @@ struct FlowNumbers {
 FlowNumbers flow_numbers(const msg::FlowStatus& f, const msg::FlowStatus* before) {
   const double loss = before ? loss_percent(f.received(), f.lost(), before->received(), before->lost())
                              : loss_percent(f.received(), f.lost(), 0, 0);
-  return {f.topic().c_str(), f.awaited(), f.writers(), f.age_ns() < 0 ? "never" : ms(static_cast<double>(f.age_ns())),
-          f.received() > 0 ? ms(static_cast<double>(f.latency_ns())) : "-", pct(loss)};
+  return {f.topic().c_str(),
+          f.awaited(),
+          f.writers(),
+          f.age_ns() < 0 ? "never" : ms(static_cast<double>(f.age_ns())),
+          f.received() > 0 ? ms(static_cast<double>(f.latency_ns())) : "-",
+          pct(loss)};
 }
 
 struct LinkNumbers {
@@ -67,7 +71,8 @@ struct LinkNumbers {
 };
 
 LinkNumbers link_numbers(const msg::LinkStatistics& l, const msg::LinkStatistics* before) {
-  const uint64_t m0 = before ? before->messages() : 0, lost0 = before ? before->lost() + before->outage() + before->queue() : 0;
+  const uint64_t m0 = before ? before->messages() : 0,
+                 lost0 = before ? before->lost() + before->outage() + before->queue() : 0;
   const uint64_t lost = l.lost() + l.outage() + l.queue();
   const double sent = static_cast<double>(l.messages()) - static_cast<double>(m0);
   const double dropped = static_cast<double>(lost) - static_cast<double>(lost0);
@@ -137,8 +142,8 @@ std::string MonitorView::lines(int64_t now_ns) const {
     const double rate = node.has_previous ? measured_rate_hz(node.previous, s) : NAN;
     text += fmt::format("node={} role={} state={} faults={} rate_hz={} overruns={} skipped={} lateness_p99={}", name,
                         runtime::role_name(s.role()), state_text(node, now_ns), faults_text(s),
-                        std::isfinite(rate) ? fmt::format("{:.1f}", rate) : "-", s.loop().overruns(), s.loop().skipped(),
-                        ms(static_cast<double>(s.loop().lateness_p99_ns())));
+                        std::isfinite(rate) ? fmt::format("{:.1f}", rate) : "-", s.loop().overruns(),
+                        s.loop().skipped(), ms(static_cast<double>(s.loop().lateness_p99_ns())));
     if (std::isfinite(s.tdpa_energy_j())) text += fmt::format(" tdpa_j={:.3f}", s.tdpa_energy_j());
     if (s.can_bus_state().size() > 0) text += fmt::format(" can={}", s.can_bus_state().c_str());
     for (const auto& f : s.flows()) {

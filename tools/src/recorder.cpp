@@ -89,7 +89,8 @@ std::string qos_yaml(transport::QosPreset preset) {
 }
 
 bool wanted(const RecordOptions& options, const std::string& topic) {
-  return options.topics.empty() || std::find(options.topics.begin(), options.topics.end(), topic) != options.topics.end();
+  return options.topics.empty() ||
+         std::find(options.topics.begin(), options.topics.end(), topic) != options.topics.end();
 }
 
 double cpu_seconds() {
@@ -98,7 +99,6 @@ double cpu_seconds() {
   const auto s = [](const timeval& t) { return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_usec) * 1e-6; };
   return s(usage.ru_utime) + s(usage.ru_stime);
 }
-
 
 // One recording: the bus's readers feed the queue, a disk thread empties it into the bag. A disk
 // error (a full disk, the size cap) ends the recording; what was committed stays readable.
@@ -172,7 +172,8 @@ class Recording {
     queue_.take(batch_, wait);
     std::lock_guard lock(bag_mutex_);
     for (const Received& r : batch_) {
-      bag_.write(r.topic_id, r.recv_ns, r.recv_mono_ns, r.sample.writer.bytes, r.sample.cdr.data(), r.sample.cdr.size());
+      bag_.write(r.topic_id, r.recv_ns, r.recv_mono_ns, r.sample.writer.bytes, r.sample.cdr.data(),
+                 r.sample.cdr.size());
       gaps_.add(r.topic_id, r.sample);
     }
     if (batch_.empty()) bag_.poll();  // quiet: commit on time all the same, so a kill loses at most a period
@@ -220,7 +221,8 @@ RecordResult record(const BusOptions& bus_options, const RecordOptions& options,
   recording.subscribe_known_topics();
   while (!runtime::shutdown_requested() && !recording.failed()) {
     recording.subscribe_new_topics();
-    if (options.duration_s > 0 && monotonic_now_ns() - start_ns >= static_cast<int64_t>(options.duration_s * 1e9)) break;
+    if (options.duration_s > 0 && monotonic_now_ns() - start_ns >= static_cast<int64_t>(options.duration_s * 1e9))
+      break;
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   RecordResult result = recording.finish();

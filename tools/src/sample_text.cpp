@@ -19,10 +19,14 @@ std::string_view text(const msg::Name& name) { return name.c_str(); }
 
 const char* mode_name(msg::ControlMode mode) {
   switch (mode) {
-    case msg::CONTROL_GRAVITY: return "gravity";
-    case msg::CONTROL_JOINT_IMPEDANCE: return "joint_impedance";
-    case msg::CONTROL_CARTESIAN_IMPEDANCE: return "cartesian_impedance";
-    case msg::CONTROL_POSITION_PD: return "position_pd";
+    case msg::CONTROL_GRAVITY:
+      return "gravity";
+    case msg::CONTROL_JOINT_IMPEDANCE:
+      return "joint_impedance";
+    case msg::CONTROL_CARTESIAN_IMPEDANCE:
+      return "cartesian_impedance";
+    case msg::CONTROL_POSITION_PD:
+      return "position_pd";
   }
   return "unknown";
 }

@@ -62,7 +62,8 @@ std::vector<TopicView> TopicGraph::topics(const transport::ParticipantId& self) 
     if (info.participant() == self) continue;
     TopicView& topic = topics[info.topic];
     topic.name = info.topic;
-    if (std::find(topic.types.begin(), topic.types.end(), info.type) == topic.types.end()) topic.types.push_back(info.type);
+    if (std::find(topic.types.begin(), topic.types.end(), info.type) == topic.types.end())
+      topic.types.push_back(info.type);
     (info.is_writer ? topic.writers : topic.readers).push_back(view_of(info, participants_));
   }
   std::vector<TopicView> sorted;

@@ -110,14 +110,13 @@ int topic_hz(const BusOptions& options, const HzOptions& hz, FILE* out) {
   Bus bus(options, "teleop_topic");
   const auto topic = bus.wait_for_writers(hz.topic);
   if (!topic) throw std::runtime_error(no_writer_message(hz.topic, bus));
-  bus.participant().make_raw_reader(hz.topic, Bus::type_of(*topic), transport::topic_qos(hz.topic),
-                                    [&](const transport::RawSample& s) {
-                                      HeaderView header;
-                                      if (!read_header(s.cdr, header)) return;
-                                      std::lock_guard lock(mutex);
-                                      meter.add(monotonic_now_ns(), s.reception_ns - header.stamp_ns, s.writer,
-                                                header.seq);
-                                    });
+  bus.participant().make_raw_reader(
+      hz.topic, Bus::type_of(*topic), transport::topic_qos(hz.topic), [&](const transport::RawSample& s) {
+        HeaderView header;
+        if (!read_header(s.cdr, header)) return;
+        std::lock_guard lock(mutex);
+        meter.add(monotonic_now_ns(), s.reception_ns - header.stamp_ns, s.writer, header.seq);
+      });
   const auto snapshot = [&] {
     std::lock_guard lock(mutex);
     return meter.stats();

@@ -88,7 +88,8 @@ void DiscoveryListener::on_publisher_discovery(eprosima::fastdds::dds::DomainPar
   observer_->on_endpoint(endpoint_of(info.info, true), !gone);
 }
 
-void DiscoveryListener::on_subscriber_discovery(eprosima::fastdds::dds::DomainParticipant*, ReaderDiscoveryInfo&& info) {
+void DiscoveryListener::on_subscriber_discovery(eprosima::fastdds::dds::DomainParticipant*,
+                                                ReaderDiscoveryInfo&& info) {
   if (!observer_) return;
   const bool gone = info.status == ReaderDiscoveryInfo::REMOVED_READER;
   observer_->on_endpoint(endpoint_of(info.info, false), !gone);

@@ -31,9 +31,9 @@ bool named(std::string_view topic, const TopicSpec<T>& spec) {
 
 const std::vector<SampleType>& sample_types() {
   static const std::vector<SampleType> types{
-      describe<msg::JointState>(),    describe<msg::JointCommand>(), describe<msg::CartesianCommand>(),
-      describe<msg::WrenchStamped>(), describe<msg::JointTorque>(),  describe<msg::HandCommand>(),
-      describe<msg::HandState>(),     describe<msg::NodeStatus>(),   describe<msg::ResetRequest>(),
+      describe<msg::JointState>(),    describe<msg::JointCommand>(),  describe<msg::CartesianCommand>(),
+      describe<msg::WrenchStamped>(), describe<msg::JointTorque>(),   describe<msg::HandCommand>(),
+      describe<msg::HandState>(),     describe<msg::NodeStatus>(),    describe<msg::ResetRequest>(),
       describe<msg::TdpaEnergy>(),    describe<msg::GeomDistances>(), describe<msg::ObjectPose>(),
   };
   return types;
@@ -54,11 +54,11 @@ KnownTopic known(const TopicSpec<T>& spec) {
 const std::vector<KnownTopic>& known_topics() {
   using namespace topics;
   static const std::vector<KnownTopic> list{
-      known(kLeaderCommand),  known(kLeaderCartesian),     known(kLeaderState),           known(kFollowerState),
-      known(kFollowerWrench), known(kTwinFeedback),        known(kTwinState),             known(kTwinCommand),
-      known(kHandCommand),    known(kHandState),           known(kHandJoints),            known(kTdpaLeaderToFollower),
-      known(kTdpaFollowerToLeader), known(kTwinDistances), known(kLockstepState),         known(kLockstepCommand),
-      known(kResetRequest),   known(kNodeStatus),
+      known(kLeaderCommand),        known(kLeaderCartesian), known(kLeaderState),   known(kFollowerState),
+      known(kFollowerWrench),       known(kTwinFeedback),    known(kTwinState),     known(kTwinCommand),
+      known(kHandCommand),          known(kHandState),       known(kHandJoints),    known(kTdpaLeaderToFollower),
+      known(kTdpaFollowerToLeader), known(kTwinDistances),   known(kLockstepState), known(kLockstepCommand),
+      known(kResetRequest),         known(kNodeStatus),
   };
   return list;
 }

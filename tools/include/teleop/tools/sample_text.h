@@ -15,7 +15,8 @@ namespace teleop::tools {
 /// `field` selects one field by its dotted path ("header.seq", "q_rad", "links[0].peer"): then
 /// only its value is printed; "" prints the whole sample. Throws std::runtime_error when the
 /// bytes do not hold a sample of the type or the field does not exist.
-std::string sample_text(const transport::SampleType& type, const std::vector<uint8_t>& cdr, std::string_view field = {});
+std::string sample_text(const transport::SampleType& type, const std::vector<uint8_t>& cdr,
+                        std::string_view field = {});
 
 /// The header every teleop sample starts with, read from its serialized bytes (no full
 /// deserialization): for tools that look at sequence numbers and stamps of any type.

@@ -28,7 +28,8 @@ using RawSampleCallback = std::function<void(const RawSample&)>;
 class RawWriter {
  public:
   RawWriter() = default;
-  RawWriter(eprosima::fastdds::dds::DataWriter* writer, const EndpointStatus* status) : writer_(writer), status_(status) {}
+  RawWriter(eprosima::fastdds::dds::DataWriter* writer, const EndpointStatus* status)
+      : writer_(writer), status_(status) {}
 
   /// Sends the bytes as one sample of the writer's type. False when DDS refused it.
   [[nodiscard]] bool write(const std::vector<uint8_t>& cdr) {
