@@ -1,5 +1,5 @@
-// The bus tools against real nodes (issue 19): `teleop topic list|echo|hz` see the leader's and
-// the follower's topics; `teleop monitor` shows every node's state and, when the leader is killed,
+// The bus tools against real nodes (issue 19): `teleop topic list|echo|hz` see the demo's topics
+// (leader, follower, twin); `teleop monitor` shows every node's state and, when the leader is killed,
 // the follower's safe hold with its fault and the leader gone silent; a node says which writer it
 // waits for, and when it appears.
 #include <gtest/gtest.h>
@@ -55,9 +55,11 @@ HzTotal parse_hz(const std::string& output) {
   return h;
 }
 
-TEST_F(BusToolsTest, TopicListEchoAndHzSeeTheNodesTopics) {
-  RunningProcess leader(node("leader", 20));
-  RunningProcess follower(node("follower", 20));
+TEST_F(BusToolsTest, TopicListEchoAndHzSeeTheDemosTopics) {
+  // the demo: leader, follower and twin at 1 kHz
+  RunningProcess demo({bin("teleop"), "launch", source("config/scenarios/demo.yaml"), "--duration", "25", "--domain",
+                       domain, "--report-dir", dir});
+  ASSERT_TRUE(demo.wait_for_output("leader", 20s)) << demo.output();
 
   const ProcessResult list = tool({"topic", "list", "--verbose"});
   ASSERT_EQ(list.exit_status, 0) << list.output;
@@ -68,7 +70,12 @@ TEST_F(BusToolsTest, TopicListEchoAndHzSeeTheNodesTopics) {
       << list.output;
   EXPECT_TRUE(std::regex_search(list.output, std::regex(R"(teleop/follower/joint_state +teleop::msg::JointState)")))
       << list.output;
-  EXPECT_TRUE(std::regex_search(list.output, std::regex(R"(teleop/node_status +teleop::msg::NodeStatus +2 writers)")))
+  EXPECT_TRUE(std::regex_search(
+      list.output,
+      std::regex(
+          R"(teleop/twin/feedback_torque +teleop::msg::JointTorque +1 writer, 1 reader +\(from twin to leader\))")))
+      << list.output;
+  EXPECT_TRUE(std::regex_search(list.output, std::regex(R"(teleop/node_status +teleop::msg::NodeStatus +3 writers)")))
       << list.output;
 
   const ProcessResult echo = tool({"topic", "echo", "teleop/leader/joint_command", "--once"});
@@ -105,6 +112,7 @@ TEST_F(BusToolsTest, TopicListEchoAndHzSeeTheNodesTopics) {
   const ProcessResult field = tool({"topic", "echo", "teleop/leader/joint_command", "--field", "q_deg", "--once"});
   EXPECT_EQ(field.exit_status, 1) << field.output;
   EXPECT_NE(field.output.find("has no field 'q_deg'"), std::string::npos) << field.output;
+  EXPECT_EQ(demo.stop(SIGINT, 20s), 0) << demo.output();
 }
 
 TEST_F(BusToolsTest, MonitorShowsEveryNodeAndTheFaultAKilledPeerCauses) {
