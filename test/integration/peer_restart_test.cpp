@@ -30,13 +30,23 @@ struct Site {
   std::string dir = make_temp_dir();
   int domain = unique_domain();
   std::vector<std::string> args(const std::string& node, const std::string& config, const std::string& tag) const {
-    return {bin("teleop_" + node), "--config", config, "--domain", std::to_string(domain), "--report",
-            dir + "/" + tag + ".yaml", "--trace", dir + "/" + tag + ".csv", "--trace-seconds", "60"};
+    return {bin("teleop_" + node),
+            "--config",
+            config,
+            "--domain",
+            std::to_string(domain),
+            "--report",
+            dir + "/" + tag + ".yaml",
+            "--trace",
+            dir + "/" + tag + ".csv",
+            "--trace-seconds",
+            "60"};
   }
   // the shipped leader, swinging the flange along the wall, not into it
   std::string leader_clear_of_the_wall() const {
     return config_copy(dir, "leader.yaml",
-                       {{"amplitudes_rad: [0.0, 0.2, 0.0, 0.2, 0.0, 0.0, 0.0]", "amplitudes_rad: [0.3, 0.0, 0.0, 0.0, 0.3, 0.0, 0.3]"}});
+                       {{"amplitudes_rad: [0.0, 0.2, 0.0, 0.2, 0.0, 0.0, 0.0]",
+                         "amplitudes_rad: [0.3, 0.0, 0.0, 0.0, 0.3, 0.0, 0.3]"}});
   }
 };
 
@@ -58,6 +68,40 @@ class StreamWatch {
 
  private:
   transport::Subscription<T> sub_;
+};
+
+// What one node says in its NodeStatus of one of its flows: how many samples it has taken.
+class FlowReceived {
+ public:
+  FlowReceived(transport::Participant& participant, std::string node, std::string topic)
+      : reader_(participant.make_reader(transport::topics::kNodeStatus)),
+        node_(std::move(node)),
+        topic_(std::move(topic)) {}
+  /// The newest count the node reported (0 before its first status).
+  uint64_t poll() {
+    while (reader_.take_next(status_)) {
+      if (node_ != status_.header().source().c_str()) continue;
+      for (const auto& f : status_.flows()) {
+        if (topic_ == f.topic().c_str()) received_ = f.received();
+      }
+    }
+    return received_;
+  }
+  /// Waits until the node has taken more than `count` samples (true) or `timeout` passed.
+  bool wait_beyond(uint64_t count, std::chrono::seconds timeout) {
+    const auto until = std::chrono::steady_clock::now() + timeout;
+    while (poll() <= count) {
+      if (std::chrono::steady_clock::now() > until) return false;
+      std::this_thread::sleep_for(10ms);
+    }
+    return true;
+  }
+
+ private:
+  transport::Reader<msg::NodeStatus> reader_;
+  msg::NodeStatus status_;
+  std::string node_, topic_;
+  uint64_t received_ = 0;
 };
 
 // Per session of a peer seen in a node's trace: how long from the first cycle the node had the
@@ -91,7 +135,8 @@ void expect_each_session_resumed(const std::vector<Rejoin>& seen, int sessions, 
   for (size_t k = 0; k < seen.size(); ++k) {
     EXPECT_EQ(seen[k].session, static_cast<double>(k + 1)) << who << ": sessions count up, none comes back";
     EXPECT_LE(seen[k].resume_s, 0.050) << who << ": session " << seen[k].session;
-    ::testing::Test::RecordProperty(who + "_resume_ms_" + std::to_string(k + 1), std::to_string(seen[k].resume_s * 1e3));
+    ::testing::Test::RecordProperty(who + "_resume_ms_" + std::to_string(k + 1),
+                                    std::to_string(seen[k].resume_s * 1e3));
   }
 }
 
@@ -99,12 +144,17 @@ TEST(PeerRestart, TheFollowerFollowsEachRestartedLeaderFromItsFirstCommandAndApp
   Site site;
   transport::Participant observer(bus_participant(site.domain, "observer"));
   StreamWatch<msg::JointCommand> commands(observer, transport::topics::kLeaderCommand);
+  FlowReceived follower_commands(observer, "follower", transport::topics::kLeaderCommand.name);
   RunningProcess follower(site.args("follower", source("config/nodes/follower.yaml"), "follower"));
   ASSERT_TRUE(follower.wait_for_output("starting", 20s)) << follower.output();
   const std::string leader_config = site.leader_clear_of_the_wall();
   for (int run = 1; run <= kRestarts + 1; ++run) {
+    const uint64_t taken_before = follower_commands.poll();
     RunningProcess leader(site.args("leader", leader_config, "leader_" + std::to_string(run)));
     ASSERT_TRUE(commands.wait_for_session(static_cast<uint64_t>(run), 30s)) << "leader " << run << leader.output();
+    // the follower has this leader's commands too (discovery between the two can take longer than
+    // between the leader and this test on a loaded host)
+    ASSERT_TRUE(follower_commands.wait_beyond(taken_before + 100, 30s)) << "leader " << run << follower.output();
     follower.run_for(800ms);  // followed for a while, then killed mid-motion
     (void)leader.stop(SIGKILL, 10s);
     follower.run_for(200ms);
@@ -140,12 +190,15 @@ TEST(PeerRestart, TheLeaderFollowsEachRestartedFollowerFromItsFirstState) {
   Site site;
   transport::Participant observer(bus_participant(site.domain, "observer"));
   StreamWatch<msg::JointState> states(observer, transport::topics::kFollowerState);
+  FlowReceived leader_states(observer, "leader", transport::topics::kFollowerState.name);
   RunningProcess leader(site.args("leader", site.leader_clear_of_the_wall(), "leader"));
   ASSERT_TRUE(leader.wait_for_output("starting", 20s)) << leader.output();
   const std::string follower_config = source("config/nodes/follower.yaml");
   for (int run = 1; run <= kRestarts + 1; ++run) {
+    const uint64_t taken_before = leader_states.poll();
     RunningProcess follower(site.args("follower", follower_config, "follower_" + std::to_string(run)));
     ASSERT_TRUE(states.wait_for_session(static_cast<uint64_t>(run), 30s)) << "follower " << run << follower.output();
+    ASSERT_TRUE(leader_states.wait_beyond(taken_before + 100, 30s)) << "follower " << run << leader.output();
     leader.run_for(800ms);
     (void)follower.stop(SIGKILL, 10s);
     leader.run_for(300ms);  // beyond the leader's 100 ms peer timeout: it holds
