@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "teleop/common/config.h"
+#include "teleop/common/version.h"
 #include "teleop/experiment/experiment_runner.h"
 #include "teleop/experiment/results_table.h"
 #include "teleop/experiment/network_sweep.h"
@@ -21,6 +22,7 @@
 int main(int argc, char** argv) {
   using namespace teleop::launcher;
   CLI::App app{"teleop: teleoperation middleware tools"};
+  app.set_version_flag("--version", teleop::version_text());
   app.require_subcommand(1);
   std::string scenario_path;
   LaunchOptions options;

@@ -7,10 +7,12 @@
 #include <iostream>
 
 #include "parameter_sweep.h"
+#include "teleop/common/version.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"teleop twin sweep: one scenario over a grid of parameters, in parallel processes",
                "teleop_twin_sweep"};
+  app.set_version_flag("--version", teleop::version_text());
   std::string config_path;
   std::string out_path;
   std::optional<int> jobs;

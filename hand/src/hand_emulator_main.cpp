@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "teleop/can/socketcan_bus.h"
+#include "teleop/common/version.h"
 #include "teleop/hand/emulated_drive.h"
 #include "teleop/hand/fault_schedule.h"
 
@@ -36,6 +37,7 @@ int64_t now_ns() {
 
 int main(int argc, char** argv) {
   CLI::App app{"teleop_hand_emulator: the hand's CANopen motor controllers on a SocketCAN interface"};
+  app.set_version_flag("--version", teleop::version_text());
   std::string interface;
   std::string nodes = "1-9";
   double rate_hz = 1000.0;

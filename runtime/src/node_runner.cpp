@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "teleop/common/clock.h"
+#include "teleop/common/version.h"
 #include "teleop/runtime/realtime.h"
 #include "teleop/runtime/shutdown_signal.h"
 #include "teleop/runtime/status_names.h"
@@ -226,6 +227,7 @@ int run(const CommandLine& cli, const NodeDescription& description) {
 
 int run_node(int argc, char** argv, const NodeDescription& description) {
   CLI::App app{description.summary, "teleop_" + description.role_name};
+  app.set_version_flag("--version", teleop::version_text());
   CommandLine cli;
   app.add_option("-c,--config", cli.config_path, "YAML configuration of this node")->required();
   // the same bound as node.duration_s in the file

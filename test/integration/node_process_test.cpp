@@ -6,6 +6,7 @@
 #include <regex>
 
 #include "process_helpers.h"
+#include "teleop/common/version.h"
 #include "teleop/runtime/node_report.h"
 
 namespace teleop::test {
@@ -26,8 +27,10 @@ const BadConfigCase kBadConfigs[] = {
     {"not_a_mapping", "transport:\n", "transport: udp\nunused:\n", "transport: expected a mapping, got 'udp'"},
     {"bad_peer", "  initial_peers: []", "  initial_peers: [\"10.0.0.300\"]", "transport.initial_peers: '10.0.0.300'"},
     // a second value would win nothing and never be range-checked (issue 16)
-    {"duplicate_key", "  rate_hz: 1000\n", "  rate_hz: 1000\n  rate_hz: 5\n", "node.rate_hz: duplicate key (first given on line"},
-    {"key_not_a_name", "  rate_hz: 1000\n", "  rate_hz: 1000\n  [a, b]: 1\n", "node: a key must be a plain name, got a list"},
+    {"duplicate_key", "  rate_hz: 1000\n", "  rate_hz: 1000\n  rate_hz: 5\n",
+     "node.rate_hz: duplicate key (first given on line"},
+    {"key_not_a_name", "  rate_hz: 1000\n", "  rate_hz: 1000\n  [a, b]: 1\n",
+     "node: a key must be a plain name, got a list"},
 };
 
 class NodeProcess : public ::testing::TestWithParam<const char*> {
@@ -118,8 +121,8 @@ TEST_P(NodeProcess, ShutsDownCleanlyOnSigtermAndSigint) {
   for (int sig : {SIGTERM, SIGINT}) {
     SCOPED_TRACE(sig);
     const std::string report = make_temp_dir() + "/report.yaml";
-    RunningProcess p({executable(), "--config", shipped_config(), "--domain", std::to_string(unique_domain()),
-                      "--report", report});
+    RunningProcess p(
+        {executable(), "--config", shipped_config(), "--domain", std::to_string(unique_domain()), "--report", report});
     ASSERT_TRUE(p.wait_for_output("starting", std::chrono::seconds(20))) << p.output();
     p.run_for(std::chrono::milliseconds(500));
     // a generous bound only to catch a hang; the time itself is measured and reported, not asserted
@@ -145,13 +148,28 @@ TEST(FollowerConfigProcess, RefusesAModelThatDoesNotLoadAndAZeroThatSwitchesAChe
   };
   for (const auto& [set, expected] : cases) {
     SCOPED_TRACE(set);
-    const ProcessResult r = run_process(
-        {bin("teleop_follower"), "--config", source("config/nodes/follower.yaml"), "--set", set}, std::chrono::seconds(20));
+    const ProcessResult r =
+        run_process({bin("teleop_follower"), "--config", source("config/nodes/follower.yaml"), "--set", set},
+                    std::chrono::seconds(20));
     EXPECT_EQ(r.exit_status, 2) << r.output;
-    EXPECT_NE(r.output.find("config error: " + source("config/nodes/follower.yaml") + " (--set " + set + "): " + expected),
-              std::string::npos)
+    EXPECT_NE(
+        r.output.find("config error: " + source("config/nodes/follower.yaml") + " (--set " + set + "): " + expected),
+        std::string::npos)
         << r.output;
     EXPECT_EQ(r.output.find("starting"), std::string::npos) << "must fail before joining the network";
+  }
+}
+
+TEST(Version, EveryExecutablePrintsTheProjectVersionAndItsGitDescription) {
+  for (const char* exe :
+       {"teleop", "teleop_leader", "teleop_follower", "teleop_twin", "teleop_hand", "teleop_hand_emulator",
+        "teleop_twin_sweep", "teleop_box_plan", "teleop_lockstep_controller"}) {
+    SCOPED_TRACE(exe);
+    const ProcessResult r = run_process({bin(exe), "--version"}, std::chrono::seconds(10));
+    EXPECT_EQ(r.exit_status, 0) << r.output;
+    EXPECT_EQ(r.output, version_text() + "\n");
+    EXPECT_TRUE(std::regex_match(version_text(), std::regex(R"(teleop [0-9]+\.[0-9]+\.[0-9]+ \(git .+\))")))
+        << version_text();
   }
 }
 

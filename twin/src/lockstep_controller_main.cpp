@@ -2,12 +2,14 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include "teleop/common/version.h"
 #include "teleop/runtime/shutdown_signal.h"
 #include "lockstep_controller.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"teleop lock-step controller: answers every twin state with one joint impedance command",
                "teleop_lockstep_controller"};
+  app.set_version_flag("--version", teleop::version_text());
   teleop::transport::ParticipantConfig transport;
   transport.name = "lockstep_controller";
   teleop::twin::LockstepControllerConfig config;

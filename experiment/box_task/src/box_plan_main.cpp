@@ -5,9 +5,11 @@
 #include <exception>
 
 #include "hand_trajectories.h"
+#include "teleop/common/version.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"teleop_box_plan: joint trajectories of both hands for the two-arm box task"};
+  app.set_version_flag("--version", teleop::version_text());
   std::string plan_path;
   std::string left_csv;
   std::string right_csv;
