@@ -22,11 +22,6 @@
 namespace teleop::tools {
 namespace {
 
-struct Replayed {
-  int topic_id;
-  transport::RawWriter writer;
-};
-
 std::vector<int> topics_to_replay(const bag::BagReader& reader, const ReplayOptions& options) {
   std::vector<int> ids;
   if (options.topics.empty()) {
@@ -65,10 +60,11 @@ void sleep_until_mono(int64_t deadline_ns) {
   }
 }
 
-void wait_for_readers(std::map<int, Replayed>& writers, double seconds, const std::string& name_hint, FILE* log) {
+void wait_for_readers(std::map<int, transport::RawWriter>& writers, double seconds, const std::string& name_hint,
+                      FILE* log) {
   const int64_t deadline_ns = monotonic_now_ns() + static_cast<int64_t>(seconds * 1e9);
   const auto all_matched = [&] {
-    return std::all_of(writers.begin(), writers.end(), [](const auto& w) { return w.second.writer.matched() > 0; });
+    return std::all_of(writers.begin(), writers.end(), [](const auto& w) { return w.second.matched() > 0; });
   };
   while (!all_matched() && monotonic_now_ns() < deadline_ns && !runtime::shutdown_requested()) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -84,7 +80,7 @@ double percentile(std::vector<double> v, double p) {
 }
 
 // one pass over the recording at `rate`, from `start_ns`; returns the first message's recorded time
-int64_t play_once(bag::BagReader& reader, std::map<int, Replayed>& writers, const ReplayOptions& options,
+int64_t play_once(bag::BagReader& reader, std::map<int, transport::RawWriter>& writers, const ReplayOptions& options,
                   int64_t start_ns, std::vector<double>& errors_s, uint64_t& published) {
   std::vector<int> ids;
   for (const auto& [id, w] : writers) ids.push_back(id);
@@ -98,7 +94,7 @@ int64_t play_once(bag::BagReader& reader, std::map<int, Replayed>& writers, cons
     sleep_until_mono(due_ns);
     const int64_t now_ns = monotonic_now_ns();
     if (!options.keep_stamps) restamp_header(m.data, system_now_ns(), now_ns);
-    if (writers.at(m.topic_id).writer.write(m.data)) ++published;
+    if (writers.at(m.topic_id).write(m.data)) ++published;
     errors_s.push_back(static_cast<double>(now_ns - due_ns) * 1e-9);
   }
   return first_ns;
@@ -116,12 +112,12 @@ ReplayResult replay(const BusOptions& bus_options, const ReplayOptions& options,
   JointStateTrack live;  // outlives the bus: its reader adds to it until the bus is gone
   std::mutex live_mutex;
   Bus bus(bus_options, "teleop_replay");
-  std::map<int, Replayed> writers;
+  std::map<int, transport::RawWriter> writers;
   std::string names;
   for (int id : ids) {
     const bag::TopicInfo& topic = topic_in_bag(reader, id);
     const std::string& name = topic.name;
-    writers[id] = {id, bus.participant().make_raw_writer(name, type_of(topic), transport::topic_qos(name))};
+    writers[id] = bus.participant().make_raw_writer(name, type_of(topic), transport::topic_qos(name));
     names += (names.empty() ? "" : ", ") + name;
   }
   if (!options.compare_topic.empty()) {

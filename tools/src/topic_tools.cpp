@@ -121,16 +121,22 @@ int topic_hz(const BusOptions& options, const HzOptions& hz, FILE* out) {
     std::lock_guard lock(mutex);
     return meter.stats();
   };
+  // the loop looks at the count only: the statistics (and the lock the receiving thread waits
+  // for while they are computed) once a line is due
+  const auto received = [&] {
+    std::lock_guard lock(mutex);
+    return meter.received();
+  };
   const int64_t start_ns = monotonic_now_ns();
   int64_t next_line_ns = start_ns + 1'000'000'000;
   while (!runtime::shutdown_requested()) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
     const int64_t now_ns = monotonic_now_ns();
-    const RateStats s = snapshot();
-    if (hz.count > 0 && s.received >= hz.count) break;
+    if (hz.count > 0 && received() >= hz.count) break;
     if (hz.duration_s > 0 && now_ns - start_ns >= static_cast<int64_t>(hz.duration_s * 1e9)) break;
     if (now_ns >= next_line_ns) {
       next_line_ns += 1'000'000'000;
+      const RateStats s = snapshot();
       if (s.received == 0) {
         std::fprintf(out, "%s: no sample yet\n", hz.topic.c_str());
       } else {

@@ -40,6 +40,8 @@ class RateMeter {
   /// One arrival: when (CLOCK_MONOTONIC ns), its age (ns), its writer and sequence number.
   void add(int64_t arrival_ns, int64_t age_ns, const WriterId& writer, uint64_t seq);
   RateStats stats() const;
+  /// Arrivals so far (cheap: no statistics computed).
+  uint64_t received() const { return received_; }
 
  private:
   struct Arrival {
