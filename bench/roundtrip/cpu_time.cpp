@@ -7,6 +7,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "pinger.h"
 #include "roundtrip.h"
 #include "teleop/common/clock.h"
 
@@ -32,6 +33,13 @@ int64_t process_cpu_ns(pid_t pid) {
   fields >> utime >> stime;
   if (!fields) return -1;
   return (utime + stime) * (kNsPerS / sysconf(_SC_CLK_TCK));
+}
+
+double load_average_1min() {
+  std::ifstream in("/proc/loadavg");
+  double load = -1;
+  in >> load;
+  return in ? load : -1;
 }
 
 }  // namespace teleop::bench

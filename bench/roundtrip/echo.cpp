@@ -8,12 +8,14 @@
 #include <atomic>
 #include <cinttypes>
 #include <cstdio>
+#include <memory>
 
+#include "bare_dds.h"
 #include "loopback_udp.h"
+#include "profile_window.h"
 #include "roundtrip.h"
 #include "teleop/common/clock.h"
 #include "teleop/transport/participant.h"
-#include "teleop/transport/topics.h"
 
 namespace teleop::bench {
 namespace {
@@ -33,27 +35,70 @@ void announce_ready(int fd, const std::string& what) {
   close(fd);
 }
 
+/// What the echo sent back, and the profile window: opened once the warm-up went through (the
+/// pinger's measured window starts after it), closed when the echo is told to stop.
+class EchoCount {
+ public:
+  explicit EchoCount(uint64_t warmup_samples) : warmup_(warmup_samples) {}
+  void on_echo(bool ok) {
+    if (!ok) {
+      refused_.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
+    const uint64_t n = echoed_.fetch_add(1, std::memory_order_relaxed) + 1;
+    if (n == warmup_) {
+      profile_window_open();
+      at_open_.store(n, std::memory_order_relaxed);
+    }
+  }
+  void finish(Variant v) {
+    profile_window_close();
+    const uint64_t echoed = echoed_.load();
+    std::fprintf(stderr, "echo %s: %" PRIu64 " echoed (%" PRIu64 " after the warm-up), %" PRIu64 " refused by DDS\n",
+                 name_of(v), echoed, echoed - at_open_.load(), refused_.load());
+  }
+
+ private:
+  const uint64_t warmup_;
+  std::atomic<uint64_t> echoed_{0};
+  std::atomic<uint64_t> refused_{0};
+  std::atomic<uint64_t> at_open_{0};
+};
+
 int run_dds_echo(Variant v, const Options& opt, pid_t parent, int64_t end_mono_ns) {
+  const TopicNames names = topic_names(opt.topics);
+  EchoCount count(opt.warmup * static_cast<uint64_t>(opt.topics));
   transport::Participant participant(dds_config(v, opt.domain, "teleop_bench_echo", opt.pki, "bench_echo"));
-  // raw writer, not Publication: the sample goes back with the pinger's header untouched
-  transport::Writer<JointState> writer = participant.make_writer(transport::topics::kFollowerState);
-  std::atomic<uint64_t> echoed{0};
-  std::atomic<uint64_t> refused{0};
-  auto reader = participant.make_reader<JointState>(transport::topics::kLeaderState,
-                                                    [writer, &echoed, &refused](const JointState& sample) mutable {
-                                                      if (writer.write(sample)) {
-                                                        echoed.fetch_add(1, std::memory_order_relaxed);
-                                                      } else {
-                                                        refused.fetch_add(1, std::memory_order_relaxed);
-                                                      }
-                                                    });
+  // raw writers, not Publications: the sample goes back with the pinger's header untouched
+  std::vector<transport::Writer<JointState>> writers;
+  std::vector<transport::Reader<JointState>> readers;
+  for (const auto& pong : names.pong) {
+    writers.push_back(participant.make_writer(transport::TopicSpec<JointState>{pong.c_str(), transport::QosPreset::kStream}));
+  }
+  for (size_t i = 0; i < names.ping.size(); ++i) {
+    readers.push_back(participant.make_reader<JointState>(
+        transport::TopicSpec<JointState>{names.ping[i].c_str(), transport::QosPreset::kStream},
+        [writer = writers[i], &count](const JointState& sample) mutable { count.on_echo(writer.write(sample)); }));
+  }
   announce_ready(opt.ready_fd, "");
   while (echo_should_run(parent, end_mono_ns)) usleep(20'000);
-  if (refused.load() > 0) {
-    std::fprintf(stderr, "echo %s: %" PRIu64 " echoed, %" PRIu64 " refused by DDS\n", name_of(v), echoed.load(),
-                 refused.load());
-  }
-  (void)reader;
+  count.finish(v);
+  return 0;
+}
+
+int run_bare_dds_echo(const Options& opt, pid_t parent, int64_t end_mono_ns) {
+  const TopicNames names = topic_names(opt.topics);
+  EchoCount count(opt.warmup * static_cast<uint64_t>(opt.topics));
+  // the listener runs inside the constructor's readers: reach the endpoints through a pointer
+  // set once they all exist
+  std::atomic<BareDds*> self{nullptr};
+  BareDds dds(opt.domain, names.pong, names.ping, [&self, &count](int topic, JointState& sample) {
+    if (BareDds* d = self.load(std::memory_order_acquire)) count.on_echo(d->write(topic, sample));
+  });
+  self.store(&dds, std::memory_order_release);
+  announce_ready(opt.ready_fd, "");
+  while (echo_should_run(parent, end_mono_ns)) usleep(20'000);
+  count.finish(Variant::kBareDds);
   return 0;
 }
 
@@ -75,7 +120,7 @@ int run_udp_echo(const Options& opt, pid_t parent, int64_t end_mono_ns) {
 
 int run_echo(const Options& opt) {
   const auto v = parse_variant(opt.variant);
-  if (!v) {
+  if (!v || *v == Variant::kDdsPerf) {
     std::fprintf(stderr, "echo: unknown --variant '%s'\n", opt.variant.c_str());
     return 2;
   }
@@ -85,7 +130,9 @@ int run_echo(const Options& opt) {
   }
   const pid_t parent = getppid();
   const int64_t end = monotonic_now_ns() + static_cast<int64_t>(opt.max_seconds * 1e9);
-  return *v == Variant::kRawUdp ? run_udp_echo(opt, parent, end) : run_dds_echo(*v, opt, parent, end);
+  if (*v == Variant::kRawUdp) return run_udp_echo(opt, parent, end);
+  if (*v == Variant::kBareDds) return run_bare_dds_echo(opt, parent, end);
+  return run_dds_echo(*v, opt, parent, end);
 }
 
 }  // namespace teleop::bench

@@ -36,6 +36,8 @@ std::vector<std::string> echo_args(Variant v, const Options& opt) {
   std::vector<std::string> args{"--role",        "echo",
                                 "--variant",     name_of(v),
                                 "--domain",      std::to_string(opt.domain),
+                                "--topics",      std::to_string(opt.topics),
+                                "--warmup",      std::to_string(opt.warmup),
                                 "--max-seconds", std::to_string(max_s)};
   if (!opt.pki.empty()) args.insert(args.end(), {"--pki", opt.pki});
   return args;

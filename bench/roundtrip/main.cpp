@@ -24,13 +24,22 @@ void add_public_options(CLI::App& app, Options& opt) {
   app.add_option("--domain", opt.domain, "DDS domain id (away from a running demo's)")
       ->check(CLI::Range(0, 232))
       ->capture_default_str();
-  app.add_option("--transport", opt.transport,
-                 "teleop variants to run: udp, shm or both; the raw UDP reference always runs")
-      ->check(CLI::IsMember({"udp", "shm", "both"}))
+  app.add_option("--variants", opt.variants,
+                 "comma-separated variants in the order to run: raw-udp, fastdds (bare Fast DDS), dds-udp (teleop "
+                 "stream preset), dds-imp (teleop with a transparent impairment layer), dds-shm, dds-sec (needs --pki), "
+                 "ddsperf (Cyclone's ddsperf, if installed); all = every one that can run here")
+      ->capture_default_str();
+  app.add_option("--joints", opt.joints, "joints per sample (each of the 4 sequences)")
+      ->check(CLI::Range(size_t{1}, size_t{1000}))
+      ->capture_default_str();
+  app.add_option("--topics", opt.topics, "topics published per cycle, each echoed on its own topic")
+      ->check(CLI::Range(1, 100))
       ->capture_default_str();
   app.add_option("--warmup", opt.warmup, "round trips sent and discarded before measuring (after matching)")
       ->capture_default_str();
   app.add_option("--csv", opt.csv, "write every measured round trip to this CSV file");
+  app.add_option("--summary-csv", opt.summary_csv,
+                 "append one line per variant (percentiles, CPU, the run's parameters) to this CSV file");
   app.add_option("--pki", opt.pki,
                  "also run dds-udp with DDS Security, identities from this folder (scripts/make_pki.sh DIR "
                  "--bench-identity)")
@@ -52,8 +61,8 @@ void add_echo_options(CLI::App& app, Options& opt) {
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "Round-trip latency leader -> follower -> leader of a 7-joint JointState through the teleop transport "
-      "(Fast DDS over UDP and shared memory), beside a raw UDP ping-pong of the same payload size",
+      "Round-trip latency and CPU leader -> follower -> leader of a JointState, layer by layer in one run: raw UDP, "
+      "bare Fast DDS, the teleop transport (UDP, with a transparent impairment layer, shared memory) and ddsperf",
       "teleop_roundtrip_bench"};
   Options opt;
   add_public_options(app, opt);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "pinger.h"
+#include "profile_window.h"
 #include "teleop/common/clock.h"
 #include "teleop/common/rate_pacer.h"
 
@@ -41,6 +42,7 @@ void measure(const Options& opt, EchoProcess& echo, RatePacer& pacer, uint64_t s
   const uint64_t skipped0 = pacer.stats().skipped;
   const int64_t ping_cpu0 = own_cpu_ns();
   const int64_t echo_cpu0 = echo.cpu_ns();
+  profile_window_open();
   for (uint64_t i = 0; i < opt.samples; ++i) {
     throw_if_stopped();
     const auto tick = pacer.wait_next();
@@ -48,6 +50,7 @@ void measure(const Options& opt, EchoProcess& echo, RatePacer& pacer, uint64_t s
     if (!send(++seq)) ++result.send_failed;
     ++result.sent;
   }
+  profile_window_close();
   result.cpu_ping_ns = own_cpu_ns() - ping_cpu0;
   const int64_t echo_cpu1 = echo.cpu_ns();
   result.cpu_echo_ns = echo_cpu0 < 0 || echo_cpu1 < 0 ? -1 : echo_cpu1 - echo_cpu0;
@@ -64,6 +67,7 @@ std::string seconds_text(double s) {
 }
 
 void run_paced(const Options& opt, RttRecorder& rec, EchoProcess& echo, const SendFn& send, VariantResult& result) {
+  result.topics = static_cast<int>(rec.topics());
   MonotonicClock clock;
   const auto period_ns = static_cast<int64_t>(1e9 / opt.rate_hz);
   RatePacer pacer(clock, period_ns);
@@ -73,7 +77,8 @@ void run_paced(const Options& opt, RttRecorder& rec, EchoProcess& echo, const Se
   measure(opt, echo, pacer, first - 1, send, result);
   // grace: the last replies are still on their way
   const int64_t grace_end = monotonic_now_ns() + std::max<int64_t>(500 * kNsPerMs, 3 * period_ns);
-  while (rec.received() < result.sent && monotonic_now_ns() < grace_end && !stop_requested()) usleep(1'000);
+  const uint64_t expected = result.sent * rec.topics();
+  while (rec.received() < expected && monotonic_now_ns() < grace_end && !stop_requested()) usleep(1'000);
   result.rtt = rec.snapshot();
   echo.check_alive();  // an echo that died mid-run explains the losses: say so
 }

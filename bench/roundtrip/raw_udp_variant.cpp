@@ -32,9 +32,11 @@ void receive_replies(int fd, size_t payload_size, uint64_t token, RttRecorder& r
     }
     int64_t stamp = 0;
     uint64_t seq = 0;
+    int32_t topic = 0;
     std::memcpy(&stamp, in.data(), 8);
     std::memcpy(&seq, in.data() + 8, 8);
-    rec.on_reply(seq, stamp, arrival);
+    std::memcpy(&topic, in.data() + 24, 4);
+    rec.on_reply(topic, seq, stamp, arrival);
   }
 }
 
@@ -68,23 +70,29 @@ VariantResult run_raw_udp_variant(const Options& opt, size_t payload_size, const
   FdGuard sock{loopback_udp_socket(0)};
   connect_loopback(sock.fd, static_cast<uint16_t>(port));
 
-  // payload: [0,8) monotonic stamp, [8,16) seq, [16,24) session token, then the CDR bytes of a
-  // real sample, so that the datagram has exactly the serialized JointState's size
+  // payload: [0,8) monotonic stamp, [8,16) seq, [16,24) session token, [24,28) topic index, then
+  // the CDR bytes of a real sample, so that the datagram has exactly the serialized JointState's
+  // size; one datagram per topic and cycle
   const uint64_t token = static_cast<uint64_t>(getpid());
   std::vector<unsigned char> out(payload_size);
   std::copy(fill.begin(), fill.end(), out.begin());
   std::memcpy(out.data() + 16, &token, 8);
 
-  RttRecorder rec(opt.samples);
+  RttRecorder rec(opt.samples, opt.topics);
   Receiver receiver(sock.fd, payload_size, token, rec);
 
   run_paced(
       opt, rec, echo,
       [&](uint64_t seq) {
-        const int64_t stamp = monotonic_now_ns();
-        std::memcpy(out.data(), &stamp, 8);
-        std::memcpy(out.data() + 8, &seq, 8);
-        return send(sock.fd, out.data(), out.size(), 0) == static_cast<ssize_t>(out.size());
+        bool ok = true;
+        for (int32_t topic = 0; topic < opt.topics; ++topic) {
+          const int64_t stamp = monotonic_now_ns();
+          std::memcpy(out.data(), &stamp, 8);
+          std::memcpy(out.data() + 8, &seq, 8);
+          std::memcpy(out.data() + 24, &topic, 4);
+          ok = send(sock.fd, out.data(), out.size(), 0) == static_cast<ssize_t>(out.size()) && ok;
+        }
+        return ok;
       },
       result);
   return result;

@@ -1,8 +1,12 @@
 #pragma once
-// teleop_roundtrip_bench: leader -> follower -> leader round-trip latency of a 7-joint
-// msg::JointState at a fixed rate, through the teleop transport (Fast DDS over UDP and over shared
-// memory), and beside it, in the same run, a raw UDP ping-pong on 127.0.0.1 of a payload of the
-// same size as the serialized sample. The ratio teleop/raw is what the middleware costs.
+// teleop_roundtrip_bench: leader -> follower -> leader round-trip latency of a msg::JointState
+// (7 joints unless --joints says otherwise) at a fixed rate, layer by layer in one run: a raw UDP
+// ping-pong on 127.0.0.1 of a payload of the sample's serialized size, bare Fast DDS (a minimal
+// participant, writer and reader with default best-effort QoS, no teleop code), the teleop
+// transport with the stream preset over UDP, the same with the impairment layer in place but
+// transparent, the same over shared memory, and Cyclone's ddsperf ping/pong as an outside
+// reference when it is installed. The ratios ours / bare Fast DDS and ours / raw UDP say what
+// each layer costs.
 //
 // The pinger (this process) paces its sends on absolute deadlines (RatePacer + MonotonicClock)
 // and stamps each sample with CLOCK_MONOTONIC; the echo side is a separate process (this
@@ -35,17 +39,21 @@
 
 namespace teleop::bench {
 
-constexpr size_t kJoints = 7;
-
 struct Options {
   // public
   uint64_t samples = 5000;
   double rate_hz = 1000.0;
   int domain = 77;
-  std::string transport = "both";
+  /// Comma-separated variant names (see name_of), or "all".
+  std::string variants = "all";
+  /// Joints per sample (each of the four sequences).
+  size_t joints = 7;
+  /// Topics the pinger publishes each cycle (each echoed on its own reply topic).
+  int topics = 1;
   std::string pki;
   uint64_t warmup = 200;
   std::string csv;
+  std::string summary_csv;
   double timeout_s = 10.0;
   // internal: the echo process
   std::string role = "ping";
@@ -76,10 +84,29 @@ void throw_if_stopped();
 // ---------------------------------------------------------------------------------------------
 // variants (variant.cpp)
 
-enum class Variant { kDdsUdp, kDdsShm, kDdsSecure, kRawUdp };
+/// In the order a run measures them: the reference first, then layer by layer.
+enum class Variant { kRawUdp, kBareDds, kDdsUdp, kDdsImpaired, kDdsShm, kDdsSecure, kDdsPerf };
 
 const char* name_of(Variant v);
 std::optional<Variant> parse_variant(const std::string& name);
+
+/// The variants `opt.variants` names ("all": every one that can run here; dds-sec needs --pki,
+/// ddsperf its executable). Throws std::invalid_argument naming an unknown variant.
+std::vector<Variant> selected_variants(const Options& opt);
+
+/// True for the variants through teleop::transport.
+bool is_teleop(Variant v);
+
+/// Whether Cyclone's ddsperf (Debian: cyclonedds-tools) is on PATH.
+bool ddsperf_available();
+
+/// The topics of a run: the pinger writes `ping[i]`, the echo answers on `pong[i]`. Topic 0 is
+/// the real leader/follower state pair (the secure variant's permissions name it).
+struct TopicNames {
+  std::vector<std::string> ping;
+  std::vector<std::string> pong;
+};
+TopicNames topic_names(int topics);
 
 /// The participant of one side of a DDS variant; `identity` names the secure variant's
 /// certificate folder under `pki`.
@@ -89,8 +116,8 @@ transport::ParticipantConfig dds_config(Variant v, int domain, const std::string
 // ---------------------------------------------------------------------------------------------
 // the sample and its size on the wire (sample.cpp)
 
-/// The leader's state as the real leader would send it: 7 joints in all four sequences.
-msg::JointState make_sample(const std::string& source);
+/// The leader's state as the real leader would send it: `joints` joints in all four sequences.
+msg::JointState make_sample(const std::string& source, size_t joints);
 
 /// The CDR bytes of one sample (4-byte encapsulation included), as Fast DDS serializes it.
 std::vector<unsigned char> serialize(msg::JointState sample);

@@ -11,19 +11,23 @@
 
 namespace teleop::bench {
 
+/// A window of `window_size` cycles of `topics` samples each (every topic carries the cycle's
+/// sequence number).
 class RttRecorder {
  public:
-  explicit RttRecorder(uint64_t window_size) : window_size_(window_size), rtt_ns_(window_size, -1) {}
+  RttRecorder(uint64_t window_size, int topics)
+      : window_size_(window_size), topics_(static_cast<uint64_t>(topics)), rtt_ns_(window_size * topics_, -1) {}
 
-  /// Called on the receive thread with the reply's sequence number and the pinger's monotonic
-  /// stamp it carries, and the monotonic time of arrival.
-  void on_reply(uint64_t seq, int64_t stamp_mono_ns, int64_t arrival_mono_ns) {
+  /// Called on the receive thread with the reply's topic index and sequence number, the
+  /// pinger's monotonic stamp it carries, and the monotonic time of arrival.
+  void on_reply(int topic, uint64_t seq, int64_t stamp_mono_ns, int64_t arrival_mono_ns) {
     replies_.fetch_add(1, std::memory_order_release);
     const uint64_t begin = window_begin_.load(std::memory_order_acquire);
     if (seq < begin || seq - begin >= window_size_) return;  // warm-up, or not ours to measure
+    if (topic < 0 || static_cast<uint64_t>(topic) >= topics_) return;
     const int64_t rtt = arrival_mono_ns - stamp_mono_ns;
     std::lock_guard lock(mutex_);
-    int64_t& slot = rtt_ns_[seq - begin];
+    int64_t& slot = rtt_ns_[(seq - begin) * topics_ + static_cast<uint64_t>(topic)];
     if (slot >= 0) {
       ++duplicates_;
       return;
@@ -45,9 +49,11 @@ class RttRecorder {
     return received_;
   }
 
+  uint64_t topics() const { return topics_; }
+
   struct Snapshot {
     DurationHistogram histogram;
-    std::vector<int64_t> rtt_ns;  // per window index; -1 = no reply
+    std::vector<int64_t> rtt_ns;  // per (cycle in the window) * topics + topic; -1 = no reply
     uint64_t received = 0;
     uint64_t duplicates = 0;
     uint64_t stray = 0;
@@ -59,6 +65,7 @@ class RttRecorder {
 
  private:
   const uint64_t window_size_;
+  const uint64_t topics_;
   std::atomic<uint64_t> window_begin_{UINT64_MAX};
   std::atomic<uint64_t> replies_{0};
   std::atomic<uint64_t> stray_{0};

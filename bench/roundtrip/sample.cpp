@@ -12,13 +12,13 @@
 
 namespace teleop::bench {
 
-msg::JointState make_sample(const std::string& source) {
+msg::JointState make_sample(const std::string& source, size_t joints) {
   msg::JointState s;
   s.header().source(source);
   s.robot("panda");
   s.arm("right");
-  transport::presize_joint_state(s, kJoints);
-  for (size_t i = 0; i < kJoints; ++i) {
+  transport::presize_joint_state(s, joints);
+  for (size_t i = 0; i < joints; ++i) {
     const double x = static_cast<double>(i + 1);
     s.q_rad()[i] = 0.1 * x;
     s.dq_radps()[i] = -0.01 * x;
