@@ -19,12 +19,21 @@ namespace teleop::bench {
 namespace {
 
 /// The child between fork and exec: async-signal-safe calls only.
-[[noreturn]] void exec_echo(pid_t parent, int ready_write_fd, char* const* argv) {
+[[noreturn]] void exec_echo(pid_t parent, int ready_write_fd, const char* exe, char* const* argv) {
   prctl(PR_SET_PDEATHSIG, SIGTERM);  // the echo dies with the pinger, whatever kills it
   if (getppid() != parent) _exit(127);
   fcntl(ready_write_fd, F_SETFD, 0);  // the ready pipe survives exec
-  execv("/proc/self/exe", argv);
+  execv(exe, argv);
   _exit(127);
+}
+
+/// This executable's path, resolved before the fork: under valgrind (bench/roundtrip_profile.sh)
+/// exec of /proc/self/exe would start valgrind's own binary, its readlink gives the benchmark's.
+std::string own_executable() {
+  char path[4096];
+  const ssize_t n = readlink("/proc/self/exe", path, sizeof path - 1);
+  if (n <= 0) return "/proc/self/exe";
+  return std::string(path, static_cast<size_t>(n));
 }
 
 }  // namespace
@@ -53,6 +62,7 @@ EchoProcess::EchoProcess(const std::vector<std::string>& role_args) {
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
+  const std::string exe = own_executable();
   const pid_t parent = getpid();
   pid_ = fork();
   if (pid_ < 0) {
@@ -61,7 +71,7 @@ EchoProcess::EchoProcess(const std::vector<std::string>& role_args) {
     close(fds[1]);
     throw std::runtime_error(std::string("fork: ") + std::strerror(err));
   }
-  if (pid_ == 0) exec_echo(parent, fds[1], argv.data());
+  if (pid_ == 0) exec_echo(parent, fds[1], exe.c_str(), argv.data());
   close(fds[1]);
   ready_fd_ = fds[0];
 }
