@@ -33,14 +33,25 @@ TEST(Qos, ConvertsNanosecondsToDdsDurationExactly) {
   EXPECT_EQ(ns_of(to_dds_duration(0)), 0);
 }
 
-TEST(Qos, StreamWriterIsBestEffortVolatileKeepLastOneWithDeadline) {
+TEST(Qos, StreamWriterIsBestEffortVolatileKeepLastOne) {
   const dds::DataWriterQos q = writer_qos(QosPreset::kStream, config());
   EXPECT_EQ(q.reliability().kind, dds::BEST_EFFORT_RELIABILITY_QOS);
   EXPECT_EQ(q.durability().kind, dds::VOLATILE_DURABILITY_QOS);
   EXPECT_EQ(q.history().kind, dds::KEEP_LAST_HISTORY_QOS);
   EXPECT_EQ(q.history().depth, 1);
-  EXPECT_EQ(ns_of(q.deadline().period), 3'500'000);
   EXPECT_EQ(q.publish_mode().kind, dds::SYNCHRONOUS_PUBLISH_MODE);
+}
+
+TEST(Qos, StreamsLeaveDeadlineAndLivelinessToTheirReaders) {
+  // no DDS timer per sample: the reader checks both from arrivals (StreamFreshness)
+  const dds::DataWriterQos w = writer_qos(QosPreset::kStream, config());
+  const dds::DataReaderQos r = reader_qos(QosPreset::kStream, config());
+  EXPECT_EQ(w.deadline().period, eprosima::fastrtps::c_TimeInfinite);
+  EXPECT_EQ(r.deadline().period, eprosima::fastrtps::c_TimeInfinite);
+  EXPECT_EQ(w.liveliness().kind, dds::AUTOMATIC_LIVELINESS_QOS);
+  EXPECT_EQ(r.liveliness().kind, dds::AUTOMATIC_LIVELINESS_QOS);
+  EXPECT_EQ(w.liveliness().lease_duration, eprosima::fastrtps::c_TimeInfinite);
+  EXPECT_EQ(r.liveliness().lease_duration, eprosima::fastrtps::c_TimeInfinite);
 }
 
 TEST(Qos, StreamReaderKeepsStreamDepthAndPreallocatesExactlyIt) {
@@ -49,7 +60,6 @@ TEST(Qos, StreamReaderKeepsStreamDepthAndPreallocatesExactlyIt) {
   EXPECT_EQ(q.durability().kind, dds::VOLATILE_DURABILITY_QOS);
   EXPECT_EQ(q.history().kind, dds::KEEP_LAST_HISTORY_QOS);
   EXPECT_EQ(q.history().depth, kReaderDepth);
-  EXPECT_EQ(ns_of(q.deadline().period), 3'500'000);
   EXPECT_EQ(q.resource_limits().max_instances, 1);
   EXPECT_EQ(q.resource_limits().max_samples_per_instance, kReaderDepth);
   EXPECT_EQ(q.resource_limits().max_samples, kReaderDepth);
@@ -80,16 +90,12 @@ TEST(Qos, StateReaderIsReliableTransientLocalAndKeepsWhatArrivesBetweenPolls) {
   EXPECT_EQ(q.resource_limits().max_samples_per_instance, kReaderDepth);
 }
 
-TEST(Qos, EveryPresetCarriesLivelinessWithConfiguredLease) {
-  for (QosPreset preset : {QosPreset::kStream, QosPreset::kState}) {
+TEST(Qos, StateAndEventPresetsCarryLivelinessWithConfiguredLease) {
+  for (QosPreset preset : {QosPreset::kState, QosPreset::kEvent}) {
     const dds::DataWriterQos w = writer_qos(preset, config());
     const dds::DataReaderQos r = reader_qos(preset, config());
-    // streams: asserted per writer by its writes (see qos.cpp: Fast DDS 2.9 automatic liveliness
-    // is not tracked per participant); states: automatic
-    const auto kind =
-        preset == QosPreset::kStream ? dds::MANUAL_BY_TOPIC_LIVELINESS_QOS : dds::AUTOMATIC_LIVELINESS_QOS;
-    EXPECT_EQ(w.liveliness().kind, kind) << to_string(preset);
-    EXPECT_EQ(r.liveliness().kind, kind) << to_string(preset);
+    EXPECT_EQ(w.liveliness().kind, dds::AUTOMATIC_LIVELINESS_QOS) << to_string(preset);
+    EXPECT_EQ(r.liveliness().kind, dds::AUTOMATIC_LIVELINESS_QOS) << to_string(preset);
     EXPECT_EQ(ns_of(w.liveliness().lease_duration), 1'250'000'000) << to_string(preset);
     EXPECT_EQ(ns_of(r.liveliness().lease_duration), 1'250'000'000) << to_string(preset);
     // the writer asserts three times per lease

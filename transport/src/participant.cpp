@@ -49,11 +49,14 @@ struct Participant::ReaderListener : dds::DataReaderListener {
   TakeFunction take;               // set in callback mode only
   std::shared_ptr<void> keep_alive;  // the sample buffer the callback takes into
   void on_data_available(dds::DataReader* reader) override {
-    status.last_data_mono_ns.store(monotonic_now_ns(), std::memory_order_relaxed);
+    const int64_t now = monotonic_now_ns();
+    status.last_data_mono_ns.store(now, std::memory_order_relaxed);
+    if (status.freshness.enabled()) status.freshness.on_arrival(now);
     if (take) take(reader);
   }
   void on_subscription_matched(dds::DataReader*, const dds::SubscriptionMatchedStatus& s) override {
     status.matched.store(s.current_count, std::memory_order_relaxed);
+    if (s.current_count == 0 && status.freshness.enabled()) status.freshness.on_unmatched(monotonic_now_ns());
   }
   void on_liveliness_changed(dds::DataReader*, const dds::LivelinessChangedStatus& s) override {
     // Fast DDS 2.9 can report a writer's lapse without having reported it alive (seen under CPU load: alive_count -1)
@@ -245,6 +248,8 @@ std::pair<dds::DataReader*, EndpointStatus*> Participant::create_reader(const st
   listener->topic = topic;
   listener->take = std::move(take);
   listener->keep_alive = std::move(keep_alive);
+  // streams: deadline and liveliness from arrivals, not DDS timers (stream_freshness.h)
+  if (preset == QosPreset::kStream) listener->status.freshness.configure(config_.liveliness_lease_ns, config_.stream_deadline_ns);
   dds::DataReader* reader =
       subscriber_->create_datareader(topic_for(topic, type_name), reader_qos(preset, config_), listener.get());
   if (reader == nullptr) throw std::runtime_error("DDS refused to create a reader on " + topic);

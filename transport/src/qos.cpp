@@ -22,14 +22,16 @@ void apply_common(Qos& qos, QosPreset preset, const ParticipantConfig& config) {
   qos.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
   switch (preset) {
     case QosPreset::kStream:
-      // streams are written every cycle, so every write asserts the writer's liveliness. Not
-      // AUTOMATIC: in Fast DDS 2.9 a reader keeps every automatic writer alive as long as any
-      // participant asserts automatic liveliness (eProsima/Fast-DDS#4373, fixed in 2.10+), so
-      // with three nodes a cut host was never noticed (measured in test/netns)
-      qos.liveliness().kind = dds::MANUAL_BY_TOPIC_LIVELINESS_QOS;
+      // streams are written every cycle: their readers check deadline and liveliness from the
+      // arrivals (stream_freshness.h), so DDS has neither. Fast DDS 2.9 re-arms a timer per
+      // sample for each (measured: half the round trip, docs/benchmarks.md); and its automatic
+      // liveliness keeps every automatic writer alive while any participant asserts it
+      // (eProsima/Fast-DDS#4373), so a cut host among three nodes was never noticed (test/netns)
+      // spelled out, not c_TimeInfinite: that is a per-file constant, still zero when a static
+      // initializer elsewhere creates a writer before this file's (participant_test's helper)
+      qos.liveliness().lease_duration = Duration_t(Duration_t::INFINITE_SECONDS, Duration_t::INFINITE_NANOSECONDS);
       qos.reliability().kind = dds::BEST_EFFORT_RELIABILITY_QOS;
       qos.durability().kind = dds::VOLATILE_DURABILITY_QOS;
-      qos.deadline().period = to_dds_duration(config.stream_deadline_ns);
       break;
     case QosPreset::kState:
       qos.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;

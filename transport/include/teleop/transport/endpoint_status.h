@@ -5,17 +5,21 @@
 #include <atomic>
 #include <cstdint>
 
+#include "teleop/transport/stream_freshness.h"
+
 namespace teleop::transport {
 
 struct EndpointStatus {
   /// Remote endpoints currently matched.
   std::atomic<int32_t> matched{0};
-  /// Remote writers whose liveliness lease is alive (readers only).
+  /// Remote writers whose liveliness lease is alive (readers only; DDS's count, not streams').
   std::atomic<int32_t> alive{0};
-  /// Writers that lost liveliness since start (readers only).
+  /// Writers that lost liveliness since start (readers only; DDS's count, not streams').
   std::atomic<uint64_t> liveliness_lost{0};
-  /// Deadline periods without a sample (readers: requested, writers: offered).
+  /// Deadline periods without a sample (DDS's count: writers; readers of QoS with a deadline).
   std::atomic<uint64_t> deadline_missed{0};
+  /// A stream reader's deadline and liveliness, checked on arrival instead of by DDS timers.
+  StreamFreshness freshness;
 
   // What the node made of a reader's flow (readers only), for NodeStatus and the tools.
   /// Whether the node needs a writer on this flow to do its work (a reader of an optional or

@@ -9,9 +9,10 @@
 namespace teleop::transport {
 
 enum class QosPreset {
-  /// 1 kHz streams (states, commands, feedback): best effort, keep-last 1, deadline. A lost
-  /// sample is superseded by the next one one period later; retransmitting it would only add
-  /// latency.
+  /// 1 kHz streams (states, commands, feedback): best effort, keep-last 1. A lost sample is
+  /// superseded by the next one one period later; retransmitting it would only add latency.
+  /// Deadline and liveliness are checked by the reader from arrivals (stream_freshness.h), not
+  /// by DDS, whose timers cost a wake-up per sample.
   kStream,
   /// Low-rate state that late joiners need (node status, configuration): reliable, writer
   /// keep-last 1, transient-local, so a reader that starts late still gets the last value.
@@ -33,9 +34,10 @@ const char* to_string(QosPreset preset);
 /// A duration in ns as DDS wants it.
 eprosima::fastrtps::Duration_t to_dds_duration(int64_t ns);
 
-/// Writer QoS of a preset. Every preset carries automatic liveliness with the configured lease,
-/// so readers notice a dead peer, and has data-sharing off so that all traffic goes through
-/// the configured transports (where it can be observed and impaired).
+/// Writer QoS of a preset. The state and event presets carry automatic liveliness with the
+/// configured lease, so readers notice a dead peer (streams: their readers, see kStream); every
+/// preset has data-sharing off so that all traffic goes through the configured transports
+/// (where it can be observed and impaired).
 eprosima::fastdds::dds::DataWriterQos writer_qos(QosPreset preset, const ParticipantConfig& config);
 eprosima::fastdds::dds::DataReaderQos reader_qos(QosPreset preset, const ParticipantConfig& config);
 

@@ -6,6 +6,7 @@
 
 #include <cstring>
 
+#include "teleop/common/clock.h"
 #include "teleop/common/stream_session.h"
 #include "teleop/transport/endpoint_status.h"
 
@@ -51,12 +52,25 @@ class Reader {
   }
 
   int32_t matched() const { return status_->matched.load(std::memory_order_relaxed); }
-  /// Remote writers whose liveliness is currently asserted.
-  int32_t alive_writers() const { return status_->alive.load(std::memory_order_relaxed); }
-  uint64_t liveliness_lost() const { return status_->liveliness_lost.load(std::memory_order_relaxed); }
-  uint64_t deadline_missed() const { return status_->deadline_missed.load(std::memory_order_relaxed); }
-  /// The liveliness lease this reader requests of its writers.
+  /// Remote writers whose liveliness is currently asserted. A stream's (StreamFreshness): 1
+  /// while samples arrive within the lease, else 0. Real-time safe.
+  int32_t alive_writers() const {
+    const StreamFreshness& f = status_->freshness;
+    return f.enabled() ? f.alive(monotonic_now_ns(), matched()) : status_->alive.load(std::memory_order_relaxed);
+  }
+  /// Lapses of liveliness so far (a stream's: leases without a sample, the running one included).
+  uint64_t liveliness_lost() const {
+    const StreamFreshness& f = status_->freshness;
+    return f.enabled() ? f.lapses(monotonic_now_ns()) : status_->liveliness_lost.load(std::memory_order_relaxed);
+  }
+  /// Deadline periods without a sample so far (a stream's: the running silence included).
+  uint64_t deadline_missed() const {
+    const StreamFreshness& f = status_->freshness;
+    return f.enabled() ? f.deadline_missed(monotonic_now_ns()) : status_->deadline_missed.load(std::memory_order_relaxed);
+  }
+  /// The liveliness lease this reader requests of its writers (a stream's: checked by the reader).
   int64_t liveliness_lease_ns() const {
+    if (status_->freshness.enabled()) return status_->freshness.lease_ns();
     const auto& lease = reader_->get_qos().liveliness().lease_duration;
     return static_cast<int64_t>(lease.seconds) * 1'000'000'000 + static_cast<int64_t>(lease.nanosec);
   }
