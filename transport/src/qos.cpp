@@ -60,8 +60,11 @@ const char* to_string(QosPreset preset) {
 dds::DataWriterQos writer_qos(QosPreset preset, const ParticipantConfig& config) {
   dds::DataWriterQos qos = dds::DATAWRITER_QOS_DEFAULT;
   apply_common(qos, preset, config);
-  // assert liveliness three times per lease so one lost announcement is not a death
-  qos.liveliness().announcement_period = to_dds_duration(config.liveliness_lease_ns / 3);
+  // assert liveliness three times per lease so one lost announcement is not a death (streams:
+  // their readers check it, a stream writer announces nothing)
+  if (preset != QosPreset::kStream) {
+    qos.liveliness().announcement_period = to_dds_duration(config.liveliness_lease_ns / 3);
+  }
   // sending from the control thread itself: one sendto() per sample, no extra hand-off
   qos.publish_mode().kind = dds::SYNCHRONOUS_PUBLISH_MODE;
   if (preset == QosPreset::kState || preset == QosPreset::kEvent) {
