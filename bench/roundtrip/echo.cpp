@@ -54,7 +54,7 @@ class EchoCount {
   void finish(Variant v) {
     profile_window_close();
     const uint64_t echoed = echoed_.load();
-    std::fprintf(stderr, "echo %s: %" PRIu64 " echoed (%" PRIu64 " after the warm-up), %" PRIu64 " refused by DDS\n",
+    std::fprintf(stderr, "echo %s: %" PRIu64 " echoed (%" PRIu64 " after the warm-up), %" PRIu64 " refused\n",
                  name_of(v), echoed, echoed - at_open_.load(), refused_.load());
   }
 
@@ -104,6 +104,7 @@ int run_bare_dds_echo(const Options& opt, pid_t parent, int64_t end_mono_ns) {
 
 int run_udp_echo(const Options& opt, pid_t parent, int64_t end_mono_ns) {
   FdGuard sock{loopback_udp_socket(0)};
+  EchoCount count(opt.warmup * static_cast<uint64_t>(opt.topics));
   announce_ready(opt.ready_fd, " " + std::to_string(local_port(sock.fd)));
   std::vector<unsigned char> buf(65536);
   while (echo_should_run(parent, end_mono_ns)) {
@@ -111,8 +112,9 @@ int run_udp_echo(const Options& opt, pid_t parent, int64_t end_mono_ns) {
     socklen_t len = sizeof from;
     const ssize_t n = recvfrom(sock.fd, buf.data(), buf.size(), 0, reinterpret_cast<sockaddr*>(&from), &len);
     if (n <= 0) continue;  // timeout slice or EINTR
-    sendto(sock.fd, buf.data(), static_cast<size_t>(n), 0, reinterpret_cast<sockaddr*>(&from), len);
+    count.on_echo(sendto(sock.fd, buf.data(), static_cast<size_t>(n), 0, reinterpret_cast<sockaddr*>(&from), len) == n);
   }
+  count.finish(Variant::kRawUdp);
   return 0;
 }
 
