@@ -10,6 +10,8 @@ demo_packages=(
   build-essential cmake ninja-build ccache pkg-config git
   libfastrtps-dev libfastcdr-dev fastddsgen default-jre-headless
   libmujoco-dev libqhull-dev libeigen3-dev libyaml-cpp-dev libspdlog-dev libcli11-dev libssl-dev
+  # Debian's mujoco CMake config finds OpenGL (its viewer's); a fresh machine has no GL headers
+  libgl-dev libopengl-dev libglx-dev
   # recordings of the bus (bag/, docs/recording.md)
   libsqlite3-dev
   # figures of runs and experiments (teleop plot, teleop experiment; docs/plots.md)
