@@ -13,9 +13,14 @@ HandStudyConfig load_hand_study(const std::string& path) {
   c.file = path;
   c.name = s.get_string("name");
   c.model_path = s.get_path("model");
-  c.start_keyframe = s.get_string("start_keyframe", c.start_keyframe);
-  c.goal_keyframe = s.get_string("goal_keyframe", c.goal_keyframe);
-  c.move_s = s.get_double("move_s", Range{0, 600}, c.move_s);
+  for (const ConfigNode& w : s.get_node_list("path")) {
+    HandStudyWaypoint waypoint;
+    waypoint.keyframe = w.get_string("keyframe");
+    // the first waypoint is where the motion starts: it takes no time to reach
+    waypoint.move_s = c.path.empty() ? 0.0 : w.get_double("move_s", Range{0.01, 600});
+    c.path.push_back(waypoint);
+  }
+  if (c.path.empty()) throw s.error("path", "lists no keyframe (the first is the start, the last the pose held)");
   c.settle_s = s.get_double("settle_s", Range{0, 600}, c.settle_s);
   c.record_s = s.get_double("record_s", Range{0.01, 3600}, c.record_s);
   c.sample_period_s = s.get_double("sample_period_s", Range{1e-4, 1.0}, c.sample_period_s);
@@ -28,6 +33,11 @@ HandStudyConfig load_hand_study(const std::string& path) {
     c.hand_bandwidth_radps = control->get_double("hand_bandwidth_radps", Range{0.1, 300}, c.hand_bandwidth_radps);
     c.damping_ratio = control->get_double("damping_ratio", Range{0.1, 10}, c.damping_ratio);
     c.servo_bandwidth_radps = control->get_double("servo_bandwidth_radps", Range{0.1, 900}, c.servo_bandwidth_radps);
+    c.hand_torque_limit_nm = control->get_double("hand_torque_limit_nm", Range{0.001, 1e4}, c.hand_torque_limit_nm);
+  }
+  if (const auto contact = s.optional_child("contact")) {
+    c.friction_cone = contact->get_choice("friction_cone", {"pyramidal", "elliptic"}, "");
+    c.noslip_iterations = static_cast<int>(contact->get_int("noslip_iterations", Range{0, 1000}, -1));
   }
   std::set<std::string> names;
   for (const ConfigNode& r : s.get_node_list("runs")) {
@@ -42,6 +52,12 @@ HandStudyConfig load_hand_study(const std::string& path) {
   if (c.runs.empty()) throw s.error("runs", "lists no run");
   root.check_all_used();
   return c;
+}
+
+double HandStudyConfig::motion_s() const {
+  double total = 0.0;
+  for (const HandStudyWaypoint& w : path) total += w.move_s;
+  return total;
 }
 
 }  // namespace teleop::experiment

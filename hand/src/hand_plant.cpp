@@ -123,4 +123,13 @@ double HandPlant::motor_torque_limit_nm(size_t motor) const {
   return std::min(std::abs(model()->actuator_ctrlrange[2 * a]), std::abs(model()->actuator_ctrlrange[2 * a + 1]));
 }
 
+void HandPlant::set_motor_torque_limit(double limit_nm) {
+  if (!(limit_nm > 0.0) || !std::isfinite(limit_nm)) throw std::invalid_argument("HandPlant: torque limit must be > 0");
+  for (const int a : index_.actuator) {
+    model()->actuator_ctrllimited[a] = 1;
+    model()->actuator_ctrlrange[2 * a] = -limit_nm;
+    model()->actuator_ctrlrange[2 * a + 1] = limit_nm;
+  }
+}
+
 }  // namespace teleop::hand

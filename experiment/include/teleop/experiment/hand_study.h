@@ -24,13 +24,19 @@ struct HandStudyRun {
   hand::CouplingMode coupling = hand::CouplingMode::kConstraint;
 };
 
+/// A pose the motion passes through at rest: a keyframe of the scene, reached in move_s.
+struct HandStudyWaypoint {
+  std::string keyframe;
+  double move_s = 0.0;  ///< from the waypoint before (the first waypoint is the start: 0)
+};
+
 struct HandStudyConfig {
   std::string name;
   std::string file;
   std::string model_path;  ///< the scene, resolved relative to the study file
-  std::string start_keyframe = "home";
-  std::string goal_keyframe = "test";
-  double move_s = 4.0;            ///< start -> goal on a minimum-jerk trajectory; 0: start at the goal
+  /// The start, then the waypoints in turn, minimum jerk between each two; the last is the pose
+  /// the study holds and every PD is designed at. One waypoint: no motion, start in contact.
+  std::vector<HandStudyWaypoint> path;
   double settle_s = 2.0;          ///< at the goal before the recording window
   double record_s = 3.0;          ///< the window the MAD and the force statistics cover
   double sample_period_s = 0.01;  ///< a joint-state sample every this long (a multiple of the timestep)
@@ -39,7 +45,16 @@ struct HandStudyConfig {
   double hand_bandwidth_radps = 40.0;
   double damping_ratio = 1.0;
   double servo_bandwidth_radps = 200.0;  ///< the coupled joints' PD in the servo runs
+  /// The hand motors' torque limit [N m]; 0: the model's (the emulated drive's 1.2 N m).
+  double hand_torque_limit_nm = 0.0;
+  /// The contact solver, when the study overrides the model's: "" (the model's), "pyramidal" or
+  /// "elliptic" friction cones, and the no-slip iterations (-1: the model's).
+  std::string friction_cone;
+  int noslip_iterations = -1;
   std::vector<HandStudyRun> runs;
+
+  /// The time the motion takes (the sum of the waypoints' move_s).
+  double motion_s() const;
 };
 
 /// Reads a study file (`hand_study:` section). Throws ConfigError naming the file and key.
@@ -67,10 +82,13 @@ struct HandStudyRunResult {
   double first_contact_s = 0.0;            ///< first sample with a tip force (NaN: none)
   double coupling_residual_max_rad = 0.0;  ///< over the whole run, after every step
   int mujoco_warnings = 0;                 ///< MuJoCo's warning counters at the end
+  /// Steps with a contact other than the index fingertip on the panel (a finger, the arm, the
+  /// floor): 0 when the scene does what the study means.
+  long foreign_contact_steps = 0;
   double wall_s = 0.0;                     ///< the run's computing time
-  /// A run that did what the study needs: no MuJoCo warning and the fingertip pressing the panel
-  /// throughout the recording window.
-  bool sound() const { return mujoco_warnings == 0 && tip_force_min_n > 0.0; }
+  /// A run that did what the study needs: no MuJoCo warning, no contact but the fingertip's, and
+  /// the fingertip pressing the panel throughout the recording window.
+  bool sound() const { return mujoco_warnings == 0 && foreign_contact_steps == 0 && tip_force_min_n > 0.0; }
 };
 
 /// Simulates one run (setup errors throw std::runtime_error naming the model).

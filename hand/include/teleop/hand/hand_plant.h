@@ -62,6 +62,8 @@ class HandPlant {
   double joint_inertia_kgm2(size_t joint) const;
   /// The torque limit [N m] of motor k's actuator (its ctrlrange, symmetric).
   double motor_torque_limit_nm(size_t motor) const;
+  /// Sets every motor's torque limit to +-`limit_nm` (> 0; the actuators' ctrlrange).
+  void set_motor_torque_limit(double limit_nm);
 
   const SvhModelIndex& index() const { return index_; }
   const HandCoupling& coupling() const { return coupling_; }
