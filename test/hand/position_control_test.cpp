@@ -44,5 +44,28 @@ TEST(MinJerkMotion, StartsAndEndsAtRestAndPeaksAtHalfTimeWithFifteenEighthsTheMe
   EXPECT_THROW(MinJerkMotion({0.0}, {1.0}, 0.0), std::invalid_argument);
 }
 
+TEST(MinJerkPath, PassesEachWaypointAtRestAndHoldsTheLast) {
+  MinJerkPath path({0.0});
+  std::vector<double> q(1);
+  std::vector<double> dq(1);
+  path.sample(5.0, q, dq);  // no motion yet: the start
+  EXPECT_EQ(q[0], 0.0);
+  path.then({1.0}, 2.0);
+  path.then({3.0}, 1.0);
+  EXPECT_DOUBLE_EQ(path.duration_s(), 3.0);
+  path.sample(1.0, q, dq);
+  EXPECT_DOUBLE_EQ(q[0], 0.5);
+  path.sample(2.0, q, dq);
+  EXPECT_DOUBLE_EQ(q[0], 1.0);
+  EXPECT_EQ(dq[0], 0.0);
+  path.sample(2.5, q, dq);
+  EXPECT_DOUBLE_EQ(q[0], 2.0);
+  EXPECT_DOUBLE_EQ(dq[0], 1.875 * 2.0 / 1.0);
+  path.sample(10.0, q, dq);
+  EXPECT_DOUBLE_EQ(q[0], 3.0);
+  EXPECT_EQ(dq[0], 0.0);
+  EXPECT_THROW(MinJerkPath({}), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace teleop::hand
