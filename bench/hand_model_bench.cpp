@@ -128,7 +128,9 @@ void BM_SceneStudyStepCouplingsAsEqualities(benchmark::State& state) {
   scene_study_step(state, hand::CouplingMode::kConstraint);
 }
 BENCHMARK(BM_SceneStudyStepCouplingsAsEqualities);
-void BM_SceneStudyStepCouplingsAsServos(benchmark::State& state) { scene_study_step(state, hand::CouplingMode::kServo); }
+void BM_SceneStudyStepCouplingsAsServos(benchmark::State& state) {
+  scene_study_step(state, hand::CouplingMode::kServo);
+}
 BENCHMARK(BM_SceneStudyStepCouplingsAsServos);
 
 }  // namespace

@@ -6,13 +6,15 @@
 namespace teleop::cli {
 
 HandStudyCommand::HandStudyCommand(CLI::App& app)
-    : command_(app.add_subcommand("hand-study", "the SVH hand study in MuJoCo: joint MAD at rest in contact and the "
-                                                "fingertip force, beside the paper's Gazebo and MuJoCo tables")) {
+    : command_(app.add_subcommand("hand-study",
+                                  "the SVH hand study in MuJoCo: joint MAD at rest in contact and the "
+                                  "fingertip force, beside the paper's Gazebo and MuJoCo tables")) {
   command_->add_option("study", study_path_, "hand study YAML file (config/experiments/hand_contact.yaml)")
       ->required()
       ->check(CLI::ExistingFile);
-  command_->add_option("-o,--out", options_.out_dir, "folder for the CSVs, the report and the figures (default: a new "
-                                                     "folder in /tmp)");
+  command_->add_option("-o,--out", options_.out_dir,
+                       "folder for the CSVs, the report and the figures (default: a new "
+                       "folder in /tmp)");
   command_->add_option("--runs", options_.runs, "only these runs (comma-separated names)")->delimiter(',');
   command_->add_flag("--no-plots{false}", options_.plots, "no figures");
 }

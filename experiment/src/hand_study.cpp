@@ -41,8 +41,8 @@ void analyse(const HandStudyConfig& c, HandStudyRunResult& r) {
   }
   r.mad_paper_average_rad = paper_sum / static_cast<double>(kPaperTableJoints);
   r.tip_force_mean_n = mean_in(r.t_s, r.tip_force_n, window);
-  r.tip_force_sd_n = std::sqrt(std::max(0.0, std::pow(rms_in(r.t_s, r.tip_force_n, window), 2) -
-                                                 r.tip_force_mean_n * r.tip_force_mean_n));
+  r.tip_force_sd_n = std::sqrt(
+      std::max(0.0, std::pow(rms_in(r.t_s, r.tip_force_n, window), 2) - r.tip_force_mean_n * r.tip_force_mean_n));
   r.tip_force_min_n = std::numeric_limits<double>::infinity();
   r.tip_force_max_n = -std::numeric_limits<double>::infinity();
   r.first_contact_s = std::numeric_limits<double>::quiet_NaN();
@@ -59,11 +59,11 @@ void analyse(const HandStudyConfig& c, HandStudyRunResult& r) {
 const std::vector<std::string>& hand_study_joints() {
   static const std::vector<std::string> joints = [] {
     // Tables II and III of the paper, in their order
-    std::vector<std::string> out = {"Finger_Spread",       "Index_Finger_Distal", "Index_Finger_Proximal",
+    std::vector<std::string> out = {"Finger_Spread",        "Index_Finger_Distal",    "Index_Finger_Proximal",
                                     "Middle_Finger_Distal", "Middle_Finger_Proximal", "Pinky",
-                                    "Ring_Finger",          "Thumb_Flexion",       "Thumb_Opposition",
-                                    "shoulder_lift_joint",  "shoulder_pan_joint",  "elbow_joint",
-                                    "wrist_1_joint",        "wrist_2_joint",       "wrist_3_joint"};
+                                    "Ring_Finger",          "Thumb_Flexion",          "Thumb_Opposition",
+                                    "shoulder_lift_joint",  "shoulder_pan_joint",     "elbow_joint",
+                                    "wrist_1_joint",        "wrist_2_joint",          "wrist_3_joint"};
     // then the joints the mechanism moves, which the paper does not list
     for (const std::string_view name : hand::kHandJointNames) {
       if (std::find(hand::kHandMotorNames.begin(), hand::kHandMotorNames.end(), name) == hand::kHandMotorNames.end()) {

@@ -29,9 +29,7 @@ std::string coupling_name(hand::CouplingMode mode) {
   return mode == hand::CouplingMode::kServo ? "servo" : "constraint";
 }
 
-std::string inertia_text(double inertia_kgm2) {
-  return inertia_kgm2 > 0.0 ? format("%g", inertia_kgm2) : "model";
-}
+std::string inertia_text(double inertia_kgm2) { return inertia_kgm2 > 0.0 ? format("%g", inertia_kgm2) : "model"; }
 
 std::string contact_text(const HandStudyConfig& c) {
   if (c.friction_cone.empty() && c.noslip_iterations < 0) return "the model's solver options";
@@ -42,7 +40,8 @@ std::string contact_text(const HandStudyConfig& c) {
 
 // "ours @ 0.01 kg m^2" and the like, as a column title
 std::string run_title(const HandStudyRunResult& r) {
-  const std::string inertia = r.run.link_inertia_kgm2 > 0.0 ? inertia_text(r.run.link_inertia_kgm2) + " kg m²" : "model's";
+  const std::string inertia =
+      r.run.link_inertia_kgm2 > 0.0 ? inertia_text(r.run.link_inertia_kgm2) + " kg m²" : "model's";
   return r.run.name + " (" + inertia + ")";
 }
 
@@ -62,7 +61,8 @@ std::string paper_shaped_table(const std::vector<const HandStudyRunResult*>& run
   out += " paper, MuJoCo (0.1 kg m²) |\n" + rule + "---|\n";
   const auto row = [&](const PaperMadRow& paper, size_t joint, bool average) {
     out += "| " + (average ? std::string("**Average**") : "\"" + std::string(paper.joint) + "\"") + " |";
-    for (const HandStudyRunResult* r : runs) out += " " + mad_text(average ? r->mad_paper_average_rad : r->mad_rad[joint]) + " |";
+    for (const HandStudyRunResult* r : runs)
+      out += " " + mad_text(average ? r->mad_paper_average_rad : r->mad_rad[joint]) + " |";
     for (const double v : paper.gazebo_rad) out += " " + mad_text(v) + " |";
     out += " " + mad_text(paper.mujoco_rad) + " |\n";
   };
@@ -91,7 +91,8 @@ std::string runs_table(const std::vector<HandStudyRunResult>& runs) {
   std::string out =
       "| run | link inertia [kg m²] | couplings | MAD average, paper's 15 [rad] | MAD max, all 26 [rad] | "
       "tip force mean [N] | sd [N] | min–max [N] | first contact [s] | coupling residual max [rad] | MuJoCo "
-      "warnings | steps with another contact | computing [s] |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      "warnings | steps with another contact | computing [s] "
+      "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const HandStudyRunResult& r : runs) {
     out += "| " + r.run.name + " | " + inertia_text(r.run.link_inertia_kgm2) + " | " + coupling_name(r.run.coupling) +
            " | " + mad_text(r.mad_paper_average_rad) + " | " + mad_text(r.mad_max_rad) + " | " +
@@ -109,8 +110,8 @@ std::string mad_csv(const std::vector<HandStudyRunResult>& runs) {
   for (const HandStudyRunResult& r : runs) {
     for (size_t j = 0; j < r.mad_rad.size(); ++j) {
       out += r.run.name + "," + inertia_text(r.run.link_inertia_kgm2) + "," + coupling_name(r.run.coupling) + "," +
-             hand_study_joints()[j] + "," + (j < kPaperTableJoints ? "yes" : "no") + "," + format("%.6e", r.mad_rad[j]) +
-             "\n";
+             hand_study_joints()[j] + "," + (j < kPaperTableJoints ? "yes" : "no") + "," +
+             format("%.6e", r.mad_rad[j]) + "\n";
     }
   }
   return out;
@@ -158,14 +159,14 @@ std::string format_hand_study_markdown(const HandStudyConfig& c, const std::vect
     path += " → `" + c.path[i].keyframe + "` (" + format("%g", c.path[i].move_s) + " s)";
   }
   out += "Model `" + c.model_path + "`; " + path + " on minimum-jerk joint motions, " + format("%g", c.settle_s) +
-         " s to settle, then " +
-         format("%g", c.record_s) + " s recorded at " + format("%g", 1.0 / c.sample_period_s) +
+         " s to settle, then " + format("%g", c.record_s) + " s recorded at " + format("%g", 1.0 / c.sample_period_s) +
          " Hz; MAD (eq. 3) against the " + std::to_string(c.mad_window) +
          "-sample running mean over the recording. PD bandwidths: arm " + format("%g", c.arm_bandwidth_radps) +
          " rad/s, hand " + format("%g", c.hand_bandwidth_radps) + " rad/s, damping ratio " +
          format("%g", c.damping_ratio) + ", coupled-joint servos " + format("%g", c.servo_bandwidth_radps) +
          " rad/s; hand motors limited to " +
-         (c.hand_torque_limit_nm > 0.0 ? format("%g", c.hand_torque_limit_nm) + " N m" : std::string("the model's torque")) +
+         (c.hand_torque_limit_nm > 0.0 ? format("%g", c.hand_torque_limit_nm) + " N m"
+                                       : std::string("the model's torque")) +
          "; contact: " + contact_text(c) + ". Paper: Tables II (Gazebo) and III (MuJoCo).\n";
   for (const hand::CouplingMode mode : {hand::CouplingMode::kConstraint, hand::CouplingMode::kServo}) {
     std::vector<const HandStudyRunResult*> of_mode;
@@ -192,7 +193,8 @@ HandStudyResult run_hand_study(const HandStudyConfig& config, const HandStudyOpt
     }
   }
   for (const HandStudyRun& run : config.runs) {
-    const bool chosen = options.runs.empty() || std::find(options.runs.begin(), options.runs.end(), run.name) != options.runs.end();
+    const bool chosen =
+        options.runs.empty() || std::find(options.runs.begin(), options.runs.end(), run.name) != options.runs.end();
     if (chosen) result.runs.push_back(run_hand_study_case(config, run));
   }
   result.out_dir = make_report_dir(options.out_dir, "teleop-hand-study-" + config.name + "-");

@@ -13,7 +13,8 @@ hand::HandPlant configured_plant(const HandStudyConfig& c, const HandStudyRun& r
   hand::HandPlant plant(sim::MujocoModel::load(c.model_path), hand::HandCoupling::svh());
   if (run.link_inertia_kgm2 > 0.0) plant.set_link_inertia(run.link_inertia_kgm2);
   if (c.hand_torque_limit_nm > 0.0) plant.set_motor_torque_limit(c.hand_torque_limit_nm);
-  if (!c.friction_cone.empty()) plant.model()->opt.cone = c.friction_cone == "elliptic" ? mjCONE_ELLIPTIC : mjCONE_PYRAMIDAL;
+  if (!c.friction_cone.empty())
+    plant.model()->opt.cone = c.friction_cone == "elliptic" ? mjCONE_ELLIPTIC : mjCONE_PYRAMIDAL;
   if (c.noslip_iterations >= 0) plant.model()->opt.noslip_iterations = c.noslip_iterations;
   return plant;
 }
@@ -98,7 +99,8 @@ bool HandStudySimulation::foreign_contact() const {
   const mjData* d = plant_.data();
   for (int i = 0; i < d->ncon; ++i) {
     const mjContact& c = d->contact[i];
-    const bool ours = (c.geom1 == tip_geom_ && c.geom2 == panel_geom_) || (c.geom1 == panel_geom_ && c.geom2 == tip_geom_);
+    const bool ours =
+        (c.geom1 == tip_geom_ && c.geom2 == panel_geom_) || (c.geom1 == panel_geom_ && c.geom2 == tip_geom_);
     if (!ours) return true;
   }
   return false;

@@ -49,7 +49,8 @@ void HandPositionControl::apply(HandPlant& plant, const HandMotorVector& m_ref_r
     const int dof = plant.index().dof[j];
     // the joint's own bias force (gravity above all): a PD designed for a few grams of finger
     // link is too soft to hold it, where the PID of a mimic-joint servo integrates it away
-    const double tau = pd_torque(joint_gains_[j], q_ref, dq_ref, q[j], plant.joint_velocity(j)) + plant.data()->qfrc_bias[dof];
+    const double tau =
+        pd_torque(joint_gains_[j], q_ref, dq_ref, q[j], plant.joint_velocity(j)) + plant.data()->qfrc_bias[dof];
     plant.data()->qfrc_applied[dof] = std::clamp(tau, -limit, limit);
   }
 }

@@ -109,8 +109,8 @@ SvhModelIndex index_svh_model(const mjModel* m, const std::string& model_name, c
     const int a = find(m, mjOBJ_ACTUATOR, kHandMotorNames[k], model_name, "actuator");
     const int main = index.joint_id[main_joint_of(k)];
     if (m->actuator_trntype[a] != mjTRN_JOINT || m->actuator_trnid[2 * a] != main || m->actuator_gear[6 * a] != 1.0) {
-      throw model_error(model_name, "actuator '" + std::string(kHandMotorNames[k]) +
-                                        "' must drive joint '" + std::string(kHandMotorNames[k]) + "' with gear 1");
+      throw model_error(model_name, "actuator '" + std::string(kHandMotorNames[k]) + "' must drive joint '" +
+                                        std::string(kHandMotorNames[k]) + "' with gear 1");
     }
     index.actuator[k] = a;
     if (!(index.motor_min_rad[k] < index.motor_max_rad[k])) {
@@ -119,7 +119,8 @@ SvhModelIndex index_svh_model(const mjModel* m, const std::string& model_name, c
     }
   }
   const int touch = find(m, mjOBJ_SENSOR, "index_tip_touch", model_name, "sensor");
-  if (m->sensor_type[touch] != mjSENS_TOUCH) throw model_error(model_name, "sensor 'index_tip_touch' is no touch sensor");
+  if (m->sensor_type[touch] != mjSENS_TOUCH)
+    throw model_error(model_name, "sensor 'index_tip_touch' is no touch sensor");
   index.tip_touch_address = m->sensor_adr[touch];
   return index;
 }

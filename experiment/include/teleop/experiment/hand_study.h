@@ -85,7 +85,7 @@ struct HandStudyRunResult {
   /// Steps with a contact other than the index fingertip on the panel (a finger, the arm, the
   /// floor): 0 when the scene does what the study means.
   long foreign_contact_steps = 0;
-  double wall_s = 0.0;                     ///< the run's computing time
+  double wall_s = 0.0;  ///< the run's computing time
   /// A run that did what the study needs: no MuJoCo warning, no contact but the fingertip's, and
   /// the fingertip pressing the panel throughout the recording window.
   bool sound() const { return mujoco_warnings == 0 && foreign_contact_steps == 0 && tip_force_min_n > 0.0; }
