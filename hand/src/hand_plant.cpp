@@ -26,7 +26,7 @@ void HandPlant::set_motor_torque(size_t motor, double torque_nm) { data()->ctrl[
 HandMotorVector HandPlant::motor_positions() const {
   HandMotorVector m_rad{};
   for (size_t k = 0; k < kHandMotors; ++k) {
-    const size_t j = main_joint_of(k);
+    const size_t j = index_.main_joint[k];
     m_rad[k] = (data()->qpos[index_.qpos[j]] - coupling_.offsets()[j]) / coupling_.terms()[j].factor;
   }
   return m_rad;
@@ -35,7 +35,7 @@ HandMotorVector HandPlant::motor_positions() const {
 HandMotorVector HandPlant::motor_velocities() const {
   HandMotorVector dm_radps{};
   for (size_t k = 0; k < kHandMotors; ++k) {
-    const size_t j = main_joint_of(k);
+    const size_t j = index_.main_joint[k];
     dm_radps[k] = data()->qvel[index_.dof[j]] / coupling_.terms()[j].factor;
   }
   return dm_radps;

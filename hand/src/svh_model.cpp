@@ -113,6 +113,7 @@ SvhModelIndex index_svh_model(const mjModel* m, const std::string& model_name, c
                                         std::string(kHandMotorNames[k]) + "' with gear 1");
     }
     index.actuator[k] = a;
+    index.main_joint[k] = main_joint_of(k);
     if (!(index.motor_min_rad[k] < index.motor_max_rad[k])) {
       throw model_error(model_name, "the joints of motor '" + std::string(kHandMotorNames[k]) +
                                         "' leave it no range (their limits and the coupling disagree)");

@@ -63,6 +63,8 @@ TEST_P(SvhModels, IndexFindsTwentyJointsNineMotorsAndTheTipSensor) {
   for (size_t k = 0; k < kHandMotors; ++k) {
     EXPECT_EQ(index.actuator[k], sim.actuator_id(kHandMotorNames[k]));
     EXPECT_EQ(index.equality[main_joint_of(k)], -1);
+    EXPECT_EQ(index.main_joint[k], main_joint_of(k));
+    EXPECT_EQ(kHandJointNames[index.main_joint[k]], kHandMotorNames[k]);
   }
   int coupled = 0;
   for (size_t j = 0; j < kHandJoints; ++j) coupled += index.equality[j] >= 0;

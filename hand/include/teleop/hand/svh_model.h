@@ -35,6 +35,8 @@ struct SvhModelIndex {
   std::array<int, kHandJoints> qpos{};  ///< index in qpos
   std::array<int, kHandJoints> dof{};   ///< index in qvel / qfrc_*
   std::array<int, kHandMotors> actuator{};
+  /// Each motor's main joint, as main_joint_of() (looked up once, for the control loop).
+  std::array<size_t, kHandMotors> main_joint{};
   /// The equality that ties a coupled joint to its main joint; -1 for the 9 main joints.
   std::array<int, kHandJoints> equality{};
   /// Range of each motor [rad, motor units] that keeps every joint it drives inside its own
