@@ -11,7 +11,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "allocation_counter.h"
 #include "teleop/common/config.h"
+#include "teleop/experiment/hand_study_simulation.h"
 #include "test_helpers.h"
 
 namespace teleop::experiment {
@@ -82,6 +84,21 @@ TEST_F(PaperInertiaAtRest, TheTipForceSettlesToASteadyNonZeroValue) {
   EXPECT_NEAR(result_->first_contact_s, config_->sample_period_s, 1e-9);
   std::printf("tip force %.4f N (min %.6f, max %.6f)\n", result_->tip_force_mean_n, result_->tip_force_min_n,
               result_->tip_force_max_n);
+}
+
+TEST(HandStudySimulation, AStepDoesNotAllocate) {
+  HandStudyConfig c = resting_in_contact();
+  c.path = {{"approach", 0.0}, {"test", 0.05}};  // a moving reference, then the contact
+  HandStudySimulation simulation(c, run_named(c, "I0.01"));
+  long foreign = 0;
+  const test::ScopedAllocationCounter allocations;
+  for (int k = 0; k < 100; ++k) {
+    simulation.step();
+    foreign += simulation.foreign_contact();
+  }
+  EXPECT_EQ(allocations.count(), 0u);
+  EXPECT_EQ(foreign, 0);
+  EXPECT_NEAR(simulation.time_s(), 0.1, 1e-12);
 }
 
 TEST(HandStudyFile, ReadsThePathTheControlAndTheRuns) {

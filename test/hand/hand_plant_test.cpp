@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "allocation_counter.h"
 #include "teleop/hand/min_jerk.h"
 #include "teleop/hand/position_control.h"
 
@@ -115,6 +116,28 @@ TEST(HandPlant, MotorPositionsAreTheMainJointsAndTheTorqueLimitTheActuators) {
   EXPECT_DOUBLE_EQ(plant.motor_torque_limit_nm(hand_motor::kPinky), 1.2);
   plant.set_motor_torque(hand_motor::kPinky, 0.5);
   EXPECT_EQ(plant.data()->ctrl[plant.index().actuator[hand_motor::kPinky]], 0.5);
+}
+
+TEST(HandPlant, AControlCycleDoesNotAllocate) {
+  for (const CouplingMode mode : {CouplingMode::kConstraint, CouplingMode::kServo}) {
+    HandPlant plant = load_hand();
+    plant.mujoco().reset("open");
+    const HandPositionControl control(plant, mode, 40.0, 1.0);
+    const MinJerkMotion motion(std::vector<double>(kHandMotors, 0.0), std::vector<double>(kHandMotors, 0.3), 0.1);
+    HandMotorVector m_ref{};
+    HandMotorVector dm_ref{};
+    double sink = 0.0;
+    const test::ScopedAllocationCounter allocations;
+    for (int k = 0; k < 100; ++k) {
+      motion.sample(k * 1e-3, m_ref, dm_ref);
+      plant.begin_step();
+      control.apply(plant, m_ref, dm_ref);
+      plant.end_step();
+      sink += plant.motor_positions()[0] + plant.coupling_residual_rad() + plant.tip_force_n();
+    }
+    EXPECT_EQ(allocations.count(), 0u);
+    EXPECT_TRUE(std::isfinite(sink));
+  }
 }
 
 }  // namespace
