@@ -42,6 +42,7 @@ TEST(ParseParticipantConfig, AppliesDefaultsWhenOnlyDomainGiven) {
   EXPECT_FALSE(c.participant_lease_ns.has_value());
   EXPECT_FALSE(c.stream_deadline_ns.has_value());
   EXPECT_EQ(c.qos_profiles, "");
+  EXPECT_EQ(c.naming, Naming::kPlain);
 }
 
 TEST(ParseParticipantConfig, ReadsEveryKeyWhenAllGiven) {
@@ -133,6 +134,13 @@ TEST(ParseParticipantConfig, RejectsParticipantLeaseShorterThanLivelinessLease) 
   // with one of them given here the other is the QoS profiles': the participant checks the pair
   // it resolves (qos_profiles_test: LivelinessLeaseLongerThanTheParticipantLeaseIsAConfigError)
   EXPECT_EQ(parse("transport:\n  domain_id: 0\n  liveliness_lease_ms: 5000\n").liveliness_lease_ns, 5'000'000'000);
+}
+
+TEST(ParseParticipantConfig, ReadsNaming) {
+  EXPECT_EQ(parse("transport:\n  domain_id: 0\n  naming: ros2\n").naming, Naming::kRos2);
+  EXPECT_EQ(parse("transport:\n  domain_id: 0\n  naming: plain\n").naming, Naming::kPlain);
+  EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  naming: ros\n"),
+            "node.yaml:3: transport.naming: 'ros' is not one of: plain, ros2");
 }
 
 TEST(ParseParticipantConfig, ResolvesQosProfilesRelativeToTheConfigFile) {

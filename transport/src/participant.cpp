@@ -171,7 +171,9 @@ Participant::Participant(const ParticipantConfig& config, DiscoveryObserver* obs
                  config.impairment.seed, config.impairment.exclude_discovery ? ", discovery unimpaired" : "");
     for (const auto& l : config.impairment.links) spdlog::info("{}: link to {}: profile {}", config.name, l.to, l.profile.name);
   }
-  if (impairment_ || observer) discovery_listener_ = std::make_unique<DiscoveryListener>(impairment_, observer);
+  if (impairment_ || observer) {
+    discovery_listener_ = std::make_unique<DiscoveryListener>(impairment_, observer, config.naming);
+  }
   if (config.security.enabled()) verify_security_files(config.security);
   const QosProfileLoader profiles(config);
   spdlog::info("{}: QoS profiles from {}", config.name, profiles.source());
@@ -213,7 +215,9 @@ Participant::~Participant() {
 }
 
 std::string Participant::register_type_support(dds::TypeSupport type) {
-  const std::string name = type.get_type_name();
+  // renamed before registering, so that the type's own name and the announced one agree
+  const std::string name = dds_type_name(config_.naming, type.get_type_name());
+  if (name != type.get_type_name()) type->setName(name.c_str());
   if (participant_->find_type(name).empty()) {
     if (type.register_type(participant_) != eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
       throw std::runtime_error("DDS refused to register type " + name);
@@ -225,7 +229,8 @@ std::string Participant::register_type_support(dds::TypeSupport type) {
 dds::Topic* Participant::topic_for(const std::string& name, const std::string& type_name) {
   auto it = topics_.find(name);
   if (it != topics_.end()) return it->second;
-  dds::Topic* topic = participant_->create_topic(name, type_name, dds::TOPIC_QOS_DEFAULT);
+  dds::Topic* topic =
+      participant_->create_topic(dds_topic_name(config_.naming, name), type_name, dds::TOPIC_QOS_DEFAULT);
   if (topic == nullptr) throw std::runtime_error("DDS refused to create topic " + name);
   topics_.emplace(name, topic);
   return topic;

@@ -122,6 +122,8 @@ void parse_qos(const ConfigNode& section, ParticipantConfig& c) {
   if (section.has("stream_deadline_ms")) {
     c.stream_deadline_ns = static_cast<int64_t>(section.get_double("stream_deadline_ms", Range{0.1, 60'000}) * 1e6);
   }
+  const std::string naming = section.get_choice("naming", {"plain", "ros2"}, "plain");
+  c.naming = naming == "ros2" ? Naming::kRos2 : Naming::kPlain;
 }
 
 }  // namespace

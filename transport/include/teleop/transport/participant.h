@@ -102,6 +102,7 @@ class Participant {
   struct ReaderListener;
   using TakeFunction = std::function<void(eprosima::fastdds::dds::DataReader*)>;
 
+  // registers T under its DDS name of the configured naming; returns that name
   template <typename T>
   std::string register_type() {
     eprosima::fastdds::dds::TypeSupport type(new typename PubSubTypeOf<T>::type());

@@ -8,6 +8,7 @@
 
 #include "teleop/common/config.h"
 #include "teleop/transport/impairment/impairment_config.h"
+#include "teleop/transport/naming.h"
 
 namespace teleop::transport {
 
@@ -69,6 +70,8 @@ struct ParticipantConfig {
   std::optional<int64_t> participant_lease_ns;
   /// Deadline of the 1 kHz streams: a reader notices when no sample came within it.
   std::optional<int64_t> stream_deadline_ns;
+  /// DDS names of topics and types: teleop's own, or ROS 2's (naming.h).
+  Naming naming = Naming::kPlain;
   /// Authentication, access control and encryption; off when no files are given.
   SecurityConfig security;
   /// Network impairment of this participant's outgoing traffic (off when no links).
