@@ -175,6 +175,7 @@ Participant::Participant(const ParticipantConfig& config, DiscoveryObserver* obs
     discovery_listener_ = std::make_unique<DiscoveryListener>(impairment_, observer, config.naming);
   }
   if (config.security.enabled()) verify_security_files(config.security);
+  register_type_objects();
   const QosProfileLoader profiles(config);
   spdlog::info("{}: QoS profiles from {}", config.name, profiles.source());
   const dds::DomainParticipantQos qos = participant_qos(profiles.participant_qos(), config, impairment_);
