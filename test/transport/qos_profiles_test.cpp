@@ -4,18 +4,19 @@
 
 #include "teleop/transport/qos_profiles.h"
 
+#include <fastrtps/xmlparser/XMLProfileManager.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
-#include <functional>
 #include <map>
 #include <mutex>
 #include <string>
 #include <thread>
 
+#include "in_process_bus.h"
 #include "teleop/transport/participant.h"
 #include "teleop/transport/qos.h"
 #include "test_helpers.h"
@@ -29,20 +30,11 @@ using test::TempDir;
 
 constexpr QosPreset kPresets[] = {QosPreset::kStream, QosPreset::kState, QosPreset::kEvent};
 
-// A domain and topics of this test process only (see participant_test.cpp).
-int test_domain() { return static_cast<int>(getpid() % 100) + 100; }
-TopicSpec<msg::JointState> stream_topic(const std::string& leaf) {
-  static std::map<std::string, std::string> names;  // stable storage for the names
-  std::string& name = names[leaf];
-  if (name.empty()) name = "teleop_test/" + std::to_string(getpid()) + "/" + leaf;
-  return {name.c_str(), QosPreset::kStream};
-}
+using test_bus::stream_topic;
+using test_bus::wait_for;
 
 ParticipantConfig config(const std::string& name, const std::string& profiles = "") {
-  ParticipantConfig c;
-  c.domain_id = test_domain();
-  c.name = name;
-  c.shm = true;  // participants of one process find each other even without UDP multicast
+  ParticipantConfig c = test_bus::config(name);
   c.qos_profiles = profiles;
   return c;
 }
@@ -63,15 +55,6 @@ std::string builtin_with(const std::string& from, const std::string& to, int cou
   return text;
 }
 
-bool wait_for(const std::function<bool()>& done) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-  while (!done()) {
-    if (std::chrono::steady_clock::now() > end) return done();
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  return true;
-}
-
 // Sets an environment variable for one scope.
 class ScopedEnv {
  public:
@@ -84,8 +67,9 @@ class ScopedEnv {
   const char* name_;
 };
 
-// Every field a code preset sets, compared one by one (the message names the field).
-void expect_same_writer(const dds::DataWriterQos& xml, const dds::DataWriterQos& code, const std::string& what) {
+// Every field a code preset sets, compared one by one (the message names the profile).
+template <typename Qos>
+void expect_same_endpoint(const Qos& xml, const Qos& code, const std::string& what) {
   EXPECT_EQ(xml.reliability().kind, code.reliability().kind) << what;
   EXPECT_EQ(xml.reliability().max_blocking_time, code.reliability().max_blocking_time) << what;
   EXPECT_EQ(xml.durability().kind, code.durability().kind) << what;
@@ -101,35 +85,22 @@ void expect_same_writer(const dds::DataWriterQos& xml, const dds::DataWriterQos&
   EXPECT_EQ(xml.resource_limits().allocated_samples, code.resource_limits().allocated_samples) << what;
   EXPECT_EQ(xml.resource_limits().extra_samples, code.resource_limits().extra_samples) << what;
   EXPECT_EQ(xml.data_sharing().kind(), code.data_sharing().kind()) << what;
-  EXPECT_EQ(xml.publish_mode().kind, code.publish_mode().kind) << what;
   EXPECT_EQ(xml.endpoint().history_memory_policy, code.endpoint().history_memory_policy) << what;
+}
+
+void expect_same_writer(const dds::DataWriterQos& xml, const dds::DataWriterQos& code, const std::string& what) {
+  expect_same_endpoint(xml, code, what);
+  EXPECT_EQ(xml.publish_mode().kind, code.publish_mode().kind) << what;
   EXPECT_EQ(xml.reliable_writer_qos().times.heartbeatPeriod, code.reliable_writer_qos().times.heartbeatPeriod) << what;
   EXPECT_EQ(xml.reliable_writer_qos().times.nackResponseDelay, code.reliable_writer_qos().times.nackResponseDelay)
       << what;
-}
-
-void expect_same_reader(const dds::DataReaderQos& xml, const dds::DataReaderQos& code, const std::string& what) {
-  EXPECT_EQ(xml.reliability().kind, code.reliability().kind) << what;
-  EXPECT_EQ(xml.durability().kind, code.durability().kind) << what;
-  EXPECT_EQ(xml.history().kind, code.history().kind) << what;
-  EXPECT_EQ(xml.history().depth, code.history().depth) << what;
-  EXPECT_EQ(xml.deadline().period, code.deadline().period) << what;
-  EXPECT_EQ(xml.liveliness().kind, code.liveliness().kind) << what;
-  EXPECT_EQ(xml.liveliness().lease_duration, code.liveliness().lease_duration) << what;
-  EXPECT_EQ(xml.resource_limits().max_samples, code.resource_limits().max_samples) << what;
-  EXPECT_EQ(xml.resource_limits().max_instances, code.resource_limits().max_instances) << what;
-  EXPECT_EQ(xml.resource_limits().max_samples_per_instance, code.resource_limits().max_samples_per_instance) << what;
-  EXPECT_EQ(xml.resource_limits().allocated_samples, code.resource_limits().allocated_samples) << what;
-  EXPECT_EQ(xml.resource_limits().extra_samples, code.resource_limits().extra_samples) << what;
-  EXPECT_EQ(xml.data_sharing().kind(), code.data_sharing().kind()) << what;
-  EXPECT_EQ(xml.endpoint().history_memory_policy, code.endpoint().history_memory_policy) << what;
 }
 
 void expect_presets_reproduced(Participant& p) {
   const ParticipantConfig defaults;  // no YAML override: the profiles alone
   for (QosPreset preset : kPresets) {
     expect_same_writer(p.endpoint_qos().writer(preset), writer_qos(preset, defaults), writer_profile_name(preset));
-    expect_same_reader(p.endpoint_qos().reader(preset), reader_qos(preset, defaults), reader_profile_name(preset));
+    expect_same_endpoint(p.endpoint_qos().reader(preset), reader_qos(preset, defaults), reader_profile_name(preset));
   }
   // the participant as created, not only its profile
   const auto& created = p.dds()->get_qos().wire_protocol().builtin.discovery_config;
@@ -287,6 +258,19 @@ TEST(QosProfiles, LivelinessLeaseLongerThanTheParticipantLeaseIsAConfigError) {
   EXPECT_EQ(error_of<ConfigError>([&] { Participant p(c); }),
             "config/qos/teleop_profiles.xml (built in): teleop_stream_writer: its liveliness lease (5000 ms) is longer "
             "than the participant lease (3000 ms; transport.*_lease_ms override the profiles)");
+}
+
+TEST(QosProfiles, IntraProcessDeliveryStaysOffWhateverTheProfilesSay) {
+  TempDir dir("teleop_qos_profiles");
+  const std::string full = "<library_settings><intraprocess_delivery>FULL</intraprocess_delivery></library_settings>";
+  const std::string file = dir.write("intraprocess.xml", builtin_with("<profiles>", full + "<profiles>", 1));
+  // Fast DDS itself applies the file's library settings when it loads it
+  using eprosima::fastrtps::xmlparser::XMLProfileManager;
+  ASSERT_EQ(dds::DomainParticipantFactory::get_instance()->load_XML_profiles_file(file),
+            eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK);
+  ASSERT_EQ(XMLProfileManager::library_settings().intraprocess_delivery, eprosima::fastrtps::INTRAPROCESS_FULL);
+  Participant p(config("intraprocess", file));
+  EXPECT_EQ(XMLProfileManager::library_settings().intraprocess_delivery, eprosima::fastrtps::INTRAPROCESS_OFF);
 }
 
 TEST(QosProfiles, ImpairedParticipantKeepsDataSharingOffWhateverTheProfilesSay) {

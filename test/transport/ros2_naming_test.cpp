@@ -4,7 +4,6 @@
 // tools see the topics under their teleop names.
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
@@ -13,16 +12,14 @@
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 
-#include <chrono>
-#include <functional>
 #include <map>
 #include <mutex>
 #include <set>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "discovery_listener.h"
+#include "in_process_bus.h"
 #include "teleop/transport/participant.h"
 #include "teleop/transport/publication.h"
 #include "teleop/transport/subscription.h"
@@ -35,32 +32,14 @@ namespace dds = eprosima::fastdds::dds;
 namespace ros = teleop_msgs::msg::dds_;
 using eprosima::fastrtps::types::ReturnCode_t;
 
-// A domain and topics of this test process only (see participant_test.cpp).
-int test_domain() { return static_cast<int>(getpid() % 100) + 100; }
-std::string topic_name(const std::string& leaf) { return "teleop_test/" + std::to_string(getpid()) + "/" + leaf; }
-TopicSpec<msg::JointState> stream_topic(const std::string& leaf) {
-  static std::map<std::string, std::string> names;  // stable storage for the names
-  std::string& name = names[leaf];
-  if (name.empty()) name = topic_name(leaf);
-  return {name.c_str(), QosPreset::kStream};
-}
+using test_bus::stream_topic;
+using test_bus::topic_name;
+using test_bus::wait_for;
 
 ParticipantConfig config(const std::string& name, Naming naming) {
-  ParticipantConfig c;
-  c.domain_id = test_domain();
-  c.name = name;
-  c.shm = true;  // participants of one process find each other even without UDP multicast
+  ParticipantConfig c = test_bus::config(name);
   c.naming = naming;
   return c;
-}
-
-bool wait_for(const std::function<bool()>& done) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-  while (!done()) {
-    if (std::chrono::steady_clock::now() > end) return done();
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  return true;
 }
 
 // A participant with nothing of teleop: what a ROS 2 node's rmw_fastrtps does, by hand.
@@ -69,7 +48,7 @@ class RosSide {
   explicit RosSide(const std::string& leaf) {
     auto* factory = dds::DomainParticipantFactory::get_instance();
     participant_ =
-        factory->create_participant(static_cast<dds::DomainId_t>(test_domain()), dds::PARTICIPANT_QOS_DEFAULT);
+        factory->create_participant(static_cast<dds::DomainId_t>(test_bus::domain()), dds::PARTICIPANT_QOS_DEFAULT);
     dds::TypeSupport type(new ros::JointState_PubSubType());
     EXPECT_EQ(type.register_type(participant_), ReturnCode_t::RETCODE_OK);
     topic_ = participant_->create_topic("rt/" + topic_name(leaf), "teleop_msgs::msg::dds_::JointState_",

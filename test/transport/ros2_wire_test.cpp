@@ -6,10 +6,15 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
+#include <string>
 #include <vector>
 
 #include "teleop/transport/naming.h"
+#include "teleop/transport/sample_types.h"
 #include "teleop/transport/type_support.h"
 #include "teleop_msgs/CartesianCommand_PubSubTypes.h"
 #include "teleop_msgs/GeomDistances_PubSubTypes.h"
@@ -275,6 +280,24 @@ TEST(Ros2Wire, GeomDistancesSequenceOfBoundedStringsAndObjectPose) {
         EXPECT_EQ(r.body_().to_string(), "box");
         EXPECT_EQ(r.world_pose_().position_m_().y_(), -2.5);
       });
+}
+
+// A new sample type needs its message, and the package must build every message it has.
+TEST(Ros2Wire, EverySampleTypeHasAMessageThePackageBuilds) {
+  const std::filesystem::path package = std::filesystem::path(TELEOP_SOURCE_DIR) / "idl/ros2/teleop_msgs";
+  std::ifstream cmake(package / "CMakeLists.txt");
+  const std::string listed((std::istreambuf_iterator<char>(cmake)), std::istreambuf_iterator<char>());
+  for (const SampleType& type : sample_types()) {
+    const std::string leaf = type.dds_name.substr(type.dds_name.rfind(':') + 1);
+    EXPECT_TRUE(std::filesystem::exists(package / "msg" / (leaf + ".msg"))) << leaf;
+  }
+  int messages = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(package / "msg")) {
+    ++messages;
+    EXPECT_NE(listed.find("  msg/" + entry.path().filename().string()), std::string::npos)
+        << entry.path().filename() << " is not in the package's CMakeLists.txt";
+  }
+  EXPECT_GE(messages, static_cast<int>(sample_types().size()));
 }
 
 }  // namespace

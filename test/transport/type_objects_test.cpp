@@ -8,19 +8,15 @@
 #include <fastrtps/types/DynamicPubSubType.h>
 #include <fastrtps/types/TypeObjectFactory.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/domain/DomainParticipantListener.hpp>
 
 #include <atomic>
-#include <chrono>
-#include <cstring>
-#include <functional>
 #include <string>
-#include <thread>
 
 #include "allocation_counter.h"
+#include "in_process_bus.h"
 #include "teleop/transport/participant.h"
 #include "teleop/transport/sample_types.h"
 
@@ -30,24 +26,8 @@ namespace {
 namespace dds = eprosima::fastdds::dds;
 using eprosima::fastrtps::types::TypeObjectFactory;
 
-int test_domain() { return static_cast<int>(getpid() % 100) + 100; }
-
-ParticipantConfig config(const std::string& name) {
-  ParticipantConfig c;
-  c.domain_id = test_domain();
-  c.name = name;
-  c.shm = true;
-  return c;
-}
-
-bool wait_for(const std::function<bool()>& done) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-  while (!done()) {
-    if (std::chrono::steady_clock::now() > end) return done();
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  return true;
-}
+using test_bus::config;
+using test_bus::wait_for;
 
 TEST(TypeObjects, AParticipantRegistersThoseOfEverySampleType) {
   Participant p(config("type_objects"));
@@ -133,10 +113,10 @@ class TypeAnnouncements : public dds::DomainParticipantListener {
 };
 
 TEST(TypeObjects, WritersAnnounceTheirTypeInDiscovery) {
-  const std::string topic = "teleop_test/" + std::to_string(getpid()) + "/typed";
+  const std::string topic = test_bus::topic_name("typed");
   TypeAnnouncements announcements(topic);
   auto* factory = dds::DomainParticipantFactory::get_instance();
-  dds::DomainParticipant* observer = factory->create_participant(static_cast<dds::DomainId_t>(test_domain()),
+  dds::DomainParticipant* observer = factory->create_participant(static_cast<dds::DomainId_t>(test_bus::domain()),
                                                                  dds::PARTICIPANT_QOS_DEFAULT, &announcements);
   ASSERT_NE(observer, nullptr);
   {

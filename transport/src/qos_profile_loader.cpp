@@ -58,9 +58,11 @@ std::string kind_of(const std::string& profile) {
 // Intra-process delivery hands samples from a writer straight into same-process readers: it
 // allocates on the writer's (control) thread in Fast DDS 2.9 and bypasses the transports that
 // traffic is observed and impaired in. Nodes are separate processes, so nothing is lost. It is a
-// library setting a profiles file may carry (<library_settings>): set it after every load.
+// library setting a profiles file may carry (<library_settings>): checked after every load, and
+// written only when a file changed it, since other participants' Fast DDS threads read it.
 void disable_intraprocess_delivery() {
   eprosima::fastrtps::LibrarySettingsAttributes settings = XMLProfileManager::library_settings();
+  if (settings.intraprocess_delivery == eprosima::fastrtps::INTRAPROCESS_OFF) return;
   settings.intraprocess_delivery = eprosima::fastrtps::INTRAPROCESS_OFF;
   XMLProfileManager::library_settings(settings);
 }
@@ -98,27 +100,13 @@ std::optional<RefusedProfile> first_refused_profile(const tinyxml2::XMLDocument&
 }  // namespace
 
 const char* writer_profile_name(QosPreset preset) {
-  switch (preset) {
-    case QosPreset::kStream:
-      return "teleop_stream_writer";
-    case QosPreset::kState:
-      return "teleop_state_writer";
-    case QosPreset::kEvent:
-      return "teleop_event_writer";
-  }
-  return "?";
+  static constexpr const char* kNames[] = {"teleop_stream_writer", "teleop_state_writer", "teleop_event_writer"};
+  return kNames[static_cast<size_t>(preset)];
 }
 
 const char* reader_profile_name(QosPreset preset) {
-  switch (preset) {
-    case QosPreset::kStream:
-      return "teleop_stream_reader";
-    case QosPreset::kState:
-      return "teleop_state_reader";
-    case QosPreset::kEvent:
-      return "teleop_event_reader";
-  }
-  return "?";
+  static constexpr const char* kNames[] = {"teleop_stream_reader", "teleop_state_reader", "teleop_event_reader"};
+  return kNames[static_cast<size_t>(preset)];
 }
 
 QosProfileLoader::QosProfileLoader(const ParticipantConfig& config)
