@@ -177,7 +177,7 @@ Participant::Participant(const ParticipantConfig& config, DiscoveryObserver* obs
   if (config.security.enabled()) verify_security_files(config.security);
   register_type_objects();
   const QosProfileLoader profiles(config);
-  spdlog::info("{}: QoS profiles from {}", config.name, profiles.source());
+  qos_profiles_source_ = profiles.source();
   const dds::DomainParticipantQos qos = participant_qos(profiles.participant_qos(), config, impairment_);
   auto* factory = dds::DomainParticipantFactory::get_instance();
   participant_ = factory->create_participant(static_cast<dds::DomainId_t>(config.domain_id), qos,

@@ -93,6 +93,8 @@ class Participant {
   const ParticipantConfig& config() const { return config_; }
   /// The QoS its writers and readers get, per preset: profiles plus the YAML's overrides.
   const EndpointQos& endpoint_qos() const { return endpoint_qos_; }
+  /// Where the QoS profiles came from: a path and what chose it (for a node's log).
+  const std::string& qos_profiles_source() const { return qos_profiles_source_; }
   /// The impairment of outgoing traffic; null when none is configured.
   const impairment::ImpairmentEngine* impairment() const { return impairment_.get(); }
   eprosima::fastdds::dds::DomainParticipant* dds() { return participant_; }
@@ -121,6 +123,7 @@ class Participant {
 
   ParticipantConfig config_;
   EndpointQos endpoint_qos_;
+  std::string qos_profiles_source_;
   std::shared_ptr<impairment::ImpairmentEngine> impairment_;
   std::unique_ptr<DiscoveryListener> discovery_listener_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
