@@ -9,9 +9,11 @@
 #include <chrono>
 #include <functional>
 #include <map>
+#include <mutex>
 #include <string>
 #include <thread>
 
+#include "teleop/transport/discovery_observer.h"
 #include "teleop/transport/participant_config.h"
 #include "teleop/transport/topics.h"
 
@@ -48,5 +50,23 @@ inline bool wait_for(const std::function<bool()>& done) {
   }
   return true;
 }
+
+/// What discovery reports of the writers on the bus: the last one heard of per topic.
+class DiscoveredWriters : public DiscoveryObserver {
+ public:
+  void on_participant(const ParticipantInfo&, bool) override {}
+  void on_endpoint(const EndpointInfo& e, bool present) override {
+    std::lock_guard lock(mutex_);
+    if (e.is_writer && present) writers_[e.topic] = e;
+  }
+  std::map<std::string, EndpointInfo> by_topic() {
+    std::lock_guard lock(mutex_);
+    return writers_;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<std::string, EndpointInfo> writers_;
+};
 
 }  // namespace teleop::transport::test_bus

@@ -11,8 +11,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
-#include <map>
-#include <mutex>
 #include <string>
 #include <thread>
 
@@ -141,37 +139,22 @@ TEST(QosProfiles, YamlKeysOverrideTheProfiles) {
   EXPECT_EQ(ns_of(discovery.leaseDuration_announcementperiod), 2'000'000'000);
 }
 
-// Collects the deadline each discovered writer offers.
-class OfferedDeadlines : public DiscoveryObserver {
- public:
-  void on_participant(const ParticipantInfo&, bool) override {}
-  void on_endpoint(const EndpointInfo& e, bool present) override {
-    std::lock_guard lock(mutex_);
-    if (e.is_writer && present) deadlines_[e.topic] = e.deadline_ns;
-  }
-  int64_t of(const std::string& topic) {
-    std::lock_guard lock(mutex_);
-    auto it = deadlines_.find(topic);
-    return it == deadlines_.end() ? -1 : it->second;
-  }
-
- private:
-  std::mutex mutex_;
-  std::map<std::string, int64_t> deadlines_;
-};
-
 // One sample from a writer to a reader, then a silence of 200 ms: the number of deadlines the
 // reader saw missed, after checking the deadline the writer offered and the reader requested.
 uint64_t deadlines_missed_in_silence(const std::string& profiles, const std::string& leaf, int64_t expected_ns) {
-  OfferedDeadlines offered;
+  test_bus::DiscoveredWriters offered;
   Participant writer_side(config("deadline_writer", profiles));
   Participant reader_side(config("deadline_reader", profiles), &offered);
   Writer<msg::JointState> writer = writer_side.make_writer(stream_topic(leaf));
   Reader<msg::JointState> reader = reader_side.make_reader(stream_topic(leaf));
   EXPECT_TRUE(wait_for([&] { return writer.matched() == 1 && reader.matched() == 1; }));
   EXPECT_EQ(reader.deadline_ns(), expected_ns);
-  EXPECT_TRUE(wait_for([&] { return offered.of(stream_topic(leaf).name) == expected_ns; }))
-      << "offered " << offered.of(stream_topic(leaf).name);
+  const auto offered_deadline = [&] {
+    const auto writers = offered.by_topic();
+    const auto it = writers.find(stream_topic(leaf).name);
+    return it == writers.end() ? -1 : it->second.deadline_ns;
+  };
+  EXPECT_TRUE(wait_for([&] { return offered_deadline() == expected_ns; })) << "offered " << offered_deadline();
   msg::JointState sample;
   EXPECT_TRUE(writer.write(sample));
   EXPECT_TRUE(wait_for([&] { return reader.take_next(sample); }));

@@ -12,7 +12,6 @@
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 
-#include <map>
 #include <mutex>
 #include <set>
 #include <string>
@@ -138,36 +137,18 @@ TEST(Ros2Naming, NodeReadsWhatAWriterWithRos2NamesSends) {
   EXPECT_EQ(sub.latest().q_rad(), (std::vector<double>{1.0, 2.0, 3.0}));
 }
 
-// What `teleop topic list` hears: topics and their types.
-class Topics : public DiscoveryObserver {
- public:
-  void on_participant(const ParticipantInfo&, bool) override {}
-  void on_endpoint(const EndpointInfo& e, bool present) override {
-    std::lock_guard lock(mutex_);
-    if (e.is_writer && present) types_[e.topic] = e.type;
-  }
-  std::map<std::string, std::string> types() {
-    std::lock_guard lock(mutex_);
-    return types_;
-  }
-
- private:
-  std::mutex mutex_;
-  std::map<std::string, std::string> types_;
-};
-
 TEST(Ros2Naming, ToolsSeeTopicsUnderTheirTeleopNamesAndEchoThem) {
-  Topics topics;
+  test_bus::DiscoveredWriters topics;  // what `teleop topic list` hears
   Participant tool(config("ros2_tool", Naming::kRos2), &topics);
   Participant node(config("ros2_node", Naming::kRos2));
   Publication<msg::JointState> pub(node, stream_topic("listed"), "follower");
   const std::string listed = stream_topic("listed").name;
-  ASSERT_TRUE(wait_for([&] { return topics.types().count(listed) == 1; }));
-  EXPECT_EQ(topics.types().at(listed), "teleop_msgs::msg::dds_::JointState_");
-  EXPECT_EQ(topics.types().count("rt/" + listed), 0u);
+  ASSERT_TRUE(wait_for([&] { return topics.by_topic().count(listed) == 1; }));
+  EXPECT_EQ(topics.by_topic().at(listed).type, "teleop_msgs::msg::dds_::JointState_");
+  EXPECT_EQ(topics.by_topic().count("rt/" + listed), 0u);
 
   // echo: a raw reader of the type found by its discovered name
-  const SampleType* type = find_sample_type(topics.types().at(listed));
+  const SampleType* type = find_sample_type(topics.by_topic().at(listed).type);
   ASSERT_NE(type, nullptr);
   EXPECT_EQ(type->dds_name, "teleop::msg::JointState");
   std::mutex mutex;
@@ -187,7 +168,7 @@ TEST(Ros2Naming, ToolsSeeTopicsUnderTheirTeleopNamesAndEchoThem) {
 // The discovery listener itself, fed what Fast DDS would report: under ros2 naming only the
 // "rt/" topics are teleop's, under their names without the prefix.
 std::vector<std::string> reported_topics(Naming naming, const std::vector<std::string>& dds_topics) {
-  Topics topics;
+  test_bus::DiscoveredWriters topics;
   DiscoveryListener listener(nullptr, &topics, naming);
   for (size_t i = 0; i < dds_topics.size(); ++i) {
     eprosima::fastrtps::rtps::WriterProxyData data(4, 4);
@@ -197,7 +178,7 @@ std::vector<std::string> reported_topics(Naming naming, const std::vector<std::s
     listener.on_publisher_discovery(nullptr, eprosima::fastrtps::rtps::WriterDiscoveryInfo(data));
   }
   std::vector<std::string> names;
-  for (const auto& [topic, type] : topics.types()) names.push_back(topic);
+  for (const auto& [topic, writer] : topics.by_topic()) names.push_back(topic);
   return names;
 }
 
