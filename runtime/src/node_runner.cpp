@@ -175,6 +175,8 @@ int run(const CommandLine& cli, const NodeDescription& description) {
   int64_t started_ns = monotonic_now_ns();
   {
     transport::Participant participant(setup.transport);
+    spdlog::info("{}: QoS profiles from {}, {} topic names", node.name, participant.qos_profiles_source(),
+                 setup.transport.naming == transport::Naming::kRos2 ? "ROS 2" : "plain");
     NodeContext context{node, participant};
     std::unique_ptr<NodeLogic> logic = setup.build(context);
     trace = make_trace_recorder(cli, node, *logic);

@@ -1,6 +1,10 @@
 #pragma once
 // Named QoS presets: every topic uses one of them, so that behaviour is uniform and reviewed once.
+// The nodes run with these presets as Fast DDS XML profiles (config/qos/teleop_profiles.xml,
+// qos_profiles.h), which a user can replace; the functions here are the reference that the shipped
+// profiles reproduce field by field (transport_qos_profiles_test).
 
+#include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 
@@ -28,6 +32,12 @@ constexpr int32_t kEventQueueDepth = 1024;
 /// Samples a reader keeps between two polls of its loop (every preset).
 constexpr int32_t kReaderDepth = 16;
 
+/// The presets' liveliness lease, participant lease and stream deadline where the node's YAML
+/// does not set them (`liveliness_lease_ms`, `participant_lease_ms`, `stream_deadline_ms`).
+constexpr int64_t kDefaultLivelinessLeaseNs = 250'000'000;
+constexpr int64_t kDefaultParticipantLeaseNs = 3'000'000'000;
+constexpr int64_t kDefaultStreamDeadlineNs = 5'000'000;
+
 const char* to_string(QosPreset preset);
 
 /// A duration in ns as DDS wants it.
@@ -38,5 +48,15 @@ eprosima::fastrtps::Duration_t to_dds_duration(int64_t ns);
 /// the configured transports (where it can be observed and impaired).
 eprosima::fastdds::dds::DataWriterQos writer_qos(QosPreset preset, const ParticipantConfig& config);
 eprosima::fastdds::dds::DataReaderQos reader_qos(QosPreset preset, const ParticipantConfig& config);
+
+/// The participant QoS the presets set: its lease, announced three times per lease. Everything
+/// else of a participant (name, transports, discovery, security) follows its YAML (participant.cpp).
+eprosima::fastdds::dds::DomainParticipantQos participant_qos_preset(const ParticipantConfig& config);
+
+/// The node's YAML overrides (`liveliness_lease_ms`, `stream_deadline_ms`, `participant_lease_ms`),
+/// applied to a QoS of `preset` wherever it came from (a preset or a profiles file).
+void apply_overrides(eprosima::fastdds::dds::DataWriterQos& qos, QosPreset preset, const ParticipantConfig& config);
+void apply_overrides(eprosima::fastdds::dds::DataReaderQos& qos, QosPreset preset, const ParticipantConfig& config);
+void apply_overrides(eprosima::fastdds::dds::DomainParticipantQos& qos, const ParticipantConfig& config);
 
 }  // namespace teleop::transport

@@ -60,6 +60,12 @@ class Reader {
     const auto& lease = reader_->get_qos().liveliness().lease_duration;
     return static_cast<int64_t>(lease.seconds) * 1'000'000'000 + static_cast<int64_t>(lease.nanosec);
   }
+  /// The requested deadline (what the QoS profiles and the YAML made it); 0: none.
+  int64_t deadline_ns() const {
+    const auto& period = reader_->get_qos().deadline().period;
+    if (period == eprosima::fastrtps::c_TimeInfinite) return 0;
+    return static_cast<int64_t>(period.seconds) * 1'000'000'000 + static_cast<int64_t>(period.nanosec);
+  }
   bool valid() const { return reader_ != nullptr; }
 
   /// Whether the node needs a writer on this flow (EndpointStatus::awaited). Setup time.
