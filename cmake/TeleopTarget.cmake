@@ -11,7 +11,7 @@ function(teleop_library)
   add_library(teleop::${ARG_NAME} ALIAS ${target})
   target_include_directories(${target} PUBLIC
     $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
-    $<INSTALL_INTERFACE:include>)
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_link_libraries(${target} PUBLIC ${ARG_DEPENDS} PRIVATE ${ARG_PRIVATE_DEPENDS})
   teleop_warnings(${target})
   # calls inside one of our shared libraries may be inlined as in a static build: nothing
@@ -38,8 +38,7 @@ function(teleop_install_library target name)
   install(TARGETS ${target} EXPORT teleopTargets
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-    RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
-    INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+    RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endfunction()
 
 # teleop_executable(NAME <name> SOURCES ... DEPENDS ...): a thin main, installed into bin unless
