@@ -16,6 +16,7 @@
 #include "teleop/experiment/soak.h"
 #include "teleop/launcher/launcher.h"
 #include "teleop/launcher/reset_request.h"
+#include "teleop/runtime/command_line_hint.h"
 #include "bus_commands.h"
 #include "config_option.h"
 #include "plot_command.h"
@@ -115,7 +116,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    return teleop::runtime::exit_after_parse_error(app, e, argc, argv);
   }
   try {
     if (const auto rc = bus_commands.run()) return *rc;

@@ -1,5 +1,7 @@
 #include "teleop/common/config.h"
 
+#include "teleop/common/did_you_mean.h"
+
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -389,7 +391,9 @@ void ConfigNode::check_all_used() const {
       const auto key = entry.first.as<std::string>();
       if (mapping->used.count(key) == 0) {
         const std::string path = mapping->path.empty() ? key : mapping->path + "." + key;
-        throw ConfigError(location(entry.first.Mark(), path) + ": " + path + ": unknown key");
+        // the keys this mapping's parser asked for are the names it knows
+        const std::vector<std::string> known(mapping->used.begin(), mapping->used.end());
+        throw ConfigError(location(entry.first.Mark(), path) + ": " + path + ": unknown key" + did_you_mean(key, known));
       }
     }
   }

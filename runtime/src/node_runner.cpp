@@ -21,6 +21,7 @@
 #include "teleop/runtime/trace_recorder.h"
 #include "trace_stream.h"
 #include "teleop/transport/participant_config.h"
+#include "teleop/runtime/command_line_hint.h"
 
 namespace teleop::runtime {
 namespace {
@@ -258,7 +259,7 @@ int run_node(int argc, char** argv, const NodeDescription& description) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    return exit_after_parse_error(app, e, argc, argv);
   }
   spdlog::set_level(spdlog::level::from_str(cli.log_level));
   spdlog::set_pattern("[%H:%M:%S.%e] [%^%l%$] %v");

@@ -166,6 +166,14 @@ TEST(ConfigNode, ReportsUnknownKeyWithNestedPathWhenNestedKeyNeverRead) {
   EXPECT_EQ(error_of([&] { c.check_all_used(); }), "test.yaml:3: node.rate_hzz: unknown key");
 }
 
+TEST(ConfigNode, SuggestsTheKnownKeyAMistypedOneIsCloseTo) {
+  const ConfigNode c = load("follower:\n  jionts: 7\n");
+  const ConfigNode follower = c.child("follower");
+  follower.get_int("joints", kAny, 7);
+  follower.get_double("command_timeout_ms", kAny, 20.0);
+  EXPECT_EQ(error_of([&] { c.check_all_used(); }), "test.yaml:2: follower.jionts: unknown key (did you mean 'joints'?)");
+}
+
 TEST(ConfigNode, ReportsUnknownSectionWhenWholeSectionNeverRead) {
   const ConfigNode c = load("a: 1\nextra:\n  k: 1\n");
   c.get_int("a", kAny);

@@ -173,5 +173,23 @@ TEST(Version, EveryExecutablePrintsTheProjectVersionAndItsGitDescription) {
   }
 }
 
+TEST(DidYouMean, AMistypedSubcommandFlagOrConfigKeyIsNamedWithTheNearestKnownOne) {
+  const ProcessResult command = run_process({bin("teleop"), "lauch", "demo.yaml"}, std::chrono::seconds(10));
+  EXPECT_EQ(command.exit_status, 2);
+  EXPECT_NE(command.output.find("'lauch' is not a command of teleop (did you mean 'launch'?)"), std::string::npos)
+      << command.output;
+  const ProcessResult flag = run_process(
+      {bin("teleop_follower"), "-c", source("config/nodes/follower.yaml"), "--duraton", "1"}, std::chrono::seconds(10));
+  EXPECT_EQ(flag.exit_status, 2);
+  EXPECT_NE(flag.output.find("(did you mean '--duration'?)"), std::string::npos) << flag.output;
+  const ProcessResult key = run_process({bin("teleop_follower"), "-c", source("config/nodes/follower.yaml"), "--set",
+                                         "follower.command_timeuot_ms=20", "--duration", "1"},
+                                        std::chrono::seconds(10));
+  EXPECT_EQ(key.exit_status, 2);
+  EXPECT_NE(key.output.find("follower.command_timeuot_ms: unknown key (did you mean 'command_timeout_ms'?)"),
+            std::string::npos)
+      << key.output;
+}
+
 }  // namespace
 }  // namespace teleop::test
