@@ -1,6 +1,7 @@
 #include "teleop/common/data_paths.h"
 
 #include "teleop/common/config.h"
+#include "teleop/common/did_you_mean.h"
 
 namespace teleop {
 namespace fs = std::filesystem;
@@ -51,6 +52,19 @@ std::string config_file(const std::string& kind, const std::string& name) {
   return "config/" + kind + "/" + file;
 }
 
+// the names of the configs of `kind` in every folder looked in: what a mistyped name may have meant
+std::vector<std::string> known_names(const std::string& kind, const DataRoots& roots) {
+  const std::string folder = "config/" + kind;
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const fs::path& dir : data_candidates(folder, folder, roots)) {
+    for (const fs::directory_entry& entry : fs::directory_iterator(dir, ec)) {
+      if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+    }
+  }
+  return names;
+}
+
 }  // namespace
 
 fs::path find_named_config(const std::string& kind, const std::string& name, const DataRoots& roots) {
@@ -71,7 +85,8 @@ std::string resolve_config(const std::string& kind, const std::string& name_or_p
   if (file.empty() || fs::exists(name_or_path, ec)) return name_or_path;
   const fs::path named = find_named_config(kind, name_or_path, roots);
   if (!named.empty()) return named.string();
-  throw ConfigError(name_or_path + ": no such file, nor a name in " + data_candidates_text(file, file, roots));
+  throw ConfigError(name_or_path + ": no such file, nor a name in " + data_candidates_text(file, file, roots) +
+                    did_you_mean(fs::path(name_or_path).stem().string(), known_names(kind, roots)));
 }
 
 }  // namespace teleop

@@ -94,6 +94,17 @@ TEST_F(DataPaths, AnUnknownNameSaysWhereItLooked) {
   }
 }
 
+TEST_F(DataPaths, AMistypedNameIsNamedWithTheNearestOne) {
+  put(roots_.beside_executable, "config/nodes/follower.yaml");
+  put(roots_.source, "config/nodes/leader.yaml");
+  const auto error = [&](const std::string& name) {
+    return test::error_of<ConfigError>([&] { resolve_config("nodes", name, roots_); });
+  };
+  EXPECT_NE(error("folower").find("(did you mean 'follower'?)"), std::string::npos) << error("folower");
+  EXPECT_NE(error("laeder.yaml").find("(did you mean 'leader'?)"), std::string::npos) << error("laeder.yaml");
+  EXPECT_EQ(error("twin").find("did you mean"), std::string::npos) << error("twin");
+}
+
 TEST_F(DataPaths, InstalledAndSourceLayoutsMayDiffer) {
   // the plotting package: share/teleop/teleop_plot installed, scripts/teleop_plot in the source
   const std::string source = put(roots_.source, "scripts/teleop_plot/__main__.py");

@@ -49,7 +49,7 @@ std::filesystem::path find_named_config(const std::string& kind, const std::stri
 /// A configuration file given by path or by name: `name_or_path` unchanged when it exists or has
 /// a folder in it (a path: reading it reports what is wrong with it), else
 /// find_named_config(kind, name_or_path). Throws ConfigError saying where it looked when a name
-/// names nothing.
+/// names nothing, and which shipped name it may have meant ("folower" -> "follower").
 std::string resolve_config(const std::string& kind, const std::string& name_or_path,
                            const DataRoots& roots = DataRoots::current());
 
