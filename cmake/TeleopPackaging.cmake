@@ -54,7 +54,7 @@ set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)
 # what dpkg-shlibdeps cannot see: `teleop plot` and the experiments' figures run python3 with
 # matplotlib (scripts/teleop_plot); building against the installed CMake package needs the
 # headers its public interface includes (and libqhull-dev, whose include folder Debian's mujoco
-# config names without depending on it; libcli11-dev for teleop/runtime/command_line_hint.h); fastdds-tools has the discovery server, can-utils
+# config names without depending on it; libcli11-dev: teleop::runtime's public header includes CLI11); fastdds-tools has the discovery server, can-utils
 # candump/cansend for the hand's bus
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3, python3-matplotlib")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS
