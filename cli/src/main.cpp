@@ -29,7 +29,8 @@ int main(int argc, char** argv) {
   std::string scenario_path;
   LaunchOptions options;
   CLI::App* launch_cmd = app.add_subcommand("launch", "start the nodes of a scenario, stop them together, print a summary");
-  launch_cmd->add_option("scenario", scenario_path, "scenario YAML file, or its name (demo: config/scenarios/demo.yaml)")
+  launch_cmd
+      ->add_option("scenario", scenario_path, "scenario YAML file, or its name (demo: config/scenarios/demo.yaml)")
       ->required()
       ->transform(teleop::cli::named_config("scenarios"))
       ->check(CLI::ExistingFile);

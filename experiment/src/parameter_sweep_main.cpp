@@ -17,7 +17,8 @@ int main(int argc, char** argv) {
   std::string config_path;
   std::string out_path;
   std::optional<int> jobs;
-  app.add_option("-c,--config", config_path, "YAML sweep configuration: a file, or a name in config/sweeps")->required();
+  app.add_option("-c,--config", config_path, "YAML sweep configuration: a file, or a name in config/sweeps")
+      ->required();
   app.add_option("-o,--out", out_path, "write the table as CSV to this file (default: stdout)");
   app.add_option("-j,--jobs", jobs, "worker processes (overrides sweep.jobs)")->check(CLI::Range(1, 64));
   CLI11_PARSE(app, argc, argv);
