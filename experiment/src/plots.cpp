@@ -122,4 +122,8 @@ void plot_results(const PlotTool& tool, const std::string& csv_path) {
   run_package(tool, {"results", csv_path}, csv_path);
 }
 
+void plot_hand_study(const PlotTool& tool, const std::string& trace_csv, const std::string& out_dir) {
+  run_package(tool, {"hand", trace_csv, out_dir}, trace_csv);
+}
+
 }  // namespace teleop::experiment
