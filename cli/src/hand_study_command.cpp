@@ -3,14 +3,20 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "config_option.h"
+
 namespace teleop::cli {
 
 HandStudyCommand::HandStudyCommand(CLI::App& app)
     : command_(app.add_subcommand("hand-study",
                                   "the SVH hand study in MuJoCo: joint MAD at rest in contact and the "
                                   "fingertip force, beside the paper's Gazebo and MuJoCo tables")) {
-  command_->add_option("study", study_path_, "hand study YAML file (config/experiments/hand_contact.yaml)")
+  command_
+      ->add_option("study", study_path_,
+                   "hand study YAML file, or its name in config/experiments (hand_contact: "
+                   "config/experiments/hand_contact.yaml)")
       ->required()
+      ->transform(named_config("experiments"))
       ->check(CLI::ExistingFile);
   command_->add_option("-o,--out", options_.out_dir,
                        "folder for the CSVs, the report and the figures (default: a new "
