@@ -24,7 +24,11 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/config/ DESTINATION ${TELEOP_DATA_DIR}/c
   PATTERN templates EXCLUDE
   PATTERN generate_arms.cmake EXCLUDE)
 # the data model, for peers written against the IDL rather than against teleop::msg
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/idl/ DESTINATION ${TELEOP_DATA_DIR}/idl FILES_MATCHING PATTERN "*.idl")
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/idl/ DESTINATION ${TELEOP_DATA_DIR}/idl FILES_MATCHING PATTERN "*.idl"
+  PATTERN ros2 EXCLUDE)
+# the ROS 2 message package of the same samples (transport.naming: ros2; docs/transport.md), to
+# copy into a colcon workspace
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/idl/ros2/teleop_msgs DESTINATION ${TELEOP_DATA_DIR}/ros2)
 install(FILES ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR} RENAME copyright)
 
 # everything the install copies and nothing else (no tests, no benchmarks): what the package
