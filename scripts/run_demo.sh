@@ -8,7 +8,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-./scripts/setup.sh
-cmake --preset default
-cmake --build --preset default
-exec ./build/default/bin/teleop experiment config/experiments/stiff_wall.yaml --runs pfc_tdpa,mmt --profiles wan-35ms "$@"
+# only what the demo needs: its packages, and the CLI with the three nodes (no tests, no benchmarks)
+./scripts/setup.sh --demo
+cmake --preset demo
+cmake --build --preset demo
+exec ./build/demo/bin/teleop experiment config/experiments/stiff_wall.yaml --runs pfc_tdpa,mmt --profiles wan-35ms "$@"

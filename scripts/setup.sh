@@ -1,25 +1,41 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages teleop needs. Idempotent: does nothing when all are present.
+#   scripts/setup.sh          everything: build, demo, tests, benchmarks (scripts/run_tests.sh)
+#   scripts/setup.sh --demo   what building and running the demo needs (scripts/run_demo.sh)
 set -euo pipefail
 
+# build and run the nodes, the CLI and the demo's figures
 # libqhull-dev: Debian's mujoco CMake config names its include folder without depending on it
-packages=(
-  build-essential cmake ninja-build ccache pkg-config
-  libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools default-jre-headless
-  libmujoco-dev libqhull-dev libeigen3-dev libyaml-cpp-dev libspdlog-dev libcli11-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
-  # recordings of the bus (bag/, docs/recording.md): SQLite, and its shell to look into a bag
-  libsqlite3-dev sqlite3
-  can-utils iproute2
-  # multi-host and security tests (test/netns): namespaces, the PKI script, packet capture
-  openssl libssl-dev tcpdump
-  # vcan HIL harness (test/vcan/run_in_vm.sh): a qemu VM with Debian's kernel and a busybox initramfs
-  qemu-system-x86 busybox-static cpio
-  # libFuzzer target of the CAN frame decoders (test/hand/fuzz): clang and its fuzzer runtime
-  clang libclang-rt-14-dev
+demo_packages=(
+  build-essential cmake ninja-build ccache pkg-config git
+  libfastrtps-dev libfastcdr-dev fastddsgen default-jre-headless
+  libmujoco-dev libqhull-dev libeigen3-dev libyaml-cpp-dev libspdlog-dev libcli11-dev libssl-dev
+  # Debian's mujoco CMake config finds OpenGL (its viewer's); a fresh machine has no GL headers
+  libgl-dev libopengl-dev libglx-dev
+  # recordings of the bus (bag/, docs/recording.md)
+  libsqlite3-dev
   # figures of runs and experiments (teleop plot, teleop experiment; docs/plots.md)
   python3-matplotlib
 )
+# the test suite and the benchmarks on top
+test_packages=(
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # the discovery server (fastdds discovery) of the discovery tests; sqlite3 to look into a bag
+  fastdds-tools sqlite3
+  can-utils iproute2
+  # multi-host and security tests (test/netns): namespaces, the PKI script, packet capture
+  openssl tcpdump
+  # vcan HIL harness (test/vcan/run_in_vm.sh): a qemu VM with Debian's kernel and a busybox initramfs
+  qemu-system-x86 busybox-static cpio
+  # libFuzzer target of the CAN frame decoders and the config parsers: clang and its fuzzer runtime
+  clang libclang-rt-14-dev
+)
+
+case "${1:-}" in
+  --demo) packages=("${demo_packages[@]}") ;;
+  "") packages=("${demo_packages[@]}" "${test_packages[@]}") ;;
+  *) echo "usage: $0 [--demo]" >&2; exit 2 ;;
+esac
 
 missing=()
 for pkg in "${packages[@]}"; do

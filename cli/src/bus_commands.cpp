@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include "config_option.h"
 #include "teleop/runtime/shutdown_signal.h"
 
 BusCommands::BusCommands(CLI::App& app) : app_(&app) {
@@ -75,7 +76,9 @@ void BusCommands::add_replay() {
 void BusCommands::add_bus_options(CLI::App* command) {
   command
       ->add_option("-c,--config", bus_.config_path,
-                   "join the bus as this node config says (domain, discovery, security)")
+                   "join the bus as this node config says (domain, discovery, security); a file or a name in "
+                   "config/nodes")
+      ->transform(teleop::cli::named_config("nodes"))
       ->check(CLI::ExistingFile);
   command->add_option("--domain", bus_.domain_id, "DDS domain id (overrides the config)")->check(CLI::Range(0, 232));
   command

@@ -1,6 +1,7 @@
-// teleop: command-line entry point. `teleop launch scenario.yaml` runs a scenario, `teleop sweep`
+// teleop: command-line entry point. `teleop launch demo` (a scenario's name or file) runs it, `teleop sweep`
 // one scenario under several network profiles, `teleop experiment` runs x profiles with metrics,
-// `teleop reset NODE` clears a node's latched reflex, `teleop plot RUN_DIR` draws a run's figures;
+// `teleop reset NODE` clears a node's latched reflex, `teleop plot RUN_DIR` draws a run's figures,
+// `teleop hand-study STUDY.yaml` reproduces the SVH hand study in MuJoCo (hand_study_command.h);
 // `teleop topic`, `monitor`, `record`, `replay` (bus_commands.h) look at and keep the bus.
 #include <CLI/CLI.hpp>
 
@@ -18,6 +19,8 @@
 #include "teleop/launcher/reset_request.h"
 #include "teleop/runtime/command_line_hint.h"
 #include "bus_commands.h"
+#include "config_option.h"
+#include "hand_study_command.h"
 #include "plot_command.h"
 
 int main(int argc, char** argv) {
@@ -28,7 +31,11 @@ int main(int argc, char** argv) {
   std::string scenario_path;
   LaunchOptions options;
   CLI::App* launch_cmd = app.add_subcommand("launch", "start the nodes of a scenario, stop them together, print a summary");
-  launch_cmd->add_option("scenario", scenario_path, "scenario YAML file")->required()->check(CLI::ExistingFile);
+  launch_cmd
+      ->add_option("scenario", scenario_path, "scenario YAML file, or its name (demo: config/scenarios/demo.yaml)")
+      ->required()
+      ->transform(teleop::cli::named_config("scenarios"))
+      ->check(CLI::ExistingFile);
   launch_cmd->add_option("-d,--duration", options.duration_s, "run time in seconds (overrides the scenario)")
       ->check(CLI::NonNegativeNumber);
   launch_cmd->add_option("--domain", options.domain_id, "DDS domain id for every node (overrides their configs)")
@@ -46,7 +53,10 @@ int main(int argc, char** argv) {
   std::string csv_path = "sweep.csv";
   CLI::App* sweep_cmd =
       app.add_subcommand("sweep", "run a scenario once per network profile and write one combined CSV");
-  sweep_cmd->add_option("scenario", scenario_path, "scenario YAML file")->required()->check(CLI::ExistingFile);
+  sweep_cmd->add_option("scenario", scenario_path, "scenario YAML file, or its name in config/scenarios")
+      ->required()
+      ->transform(teleop::cli::named_config("scenarios"))
+      ->check(CLI::ExistingFile);
   sweep_cmd->add_option("-p,--profiles", profiles, "network profiles (names in config/network or files; 'none' = unimpaired)")
       ->required()
       ->delimiter(',');
@@ -60,8 +70,9 @@ int main(int argc, char** argv) {
   teleop::experiment::ExperimentOptions experiment_options;
   CLI::App* experiment_cmd = app.add_subcommand(
       "experiment", "run every run x network profile of an experiment file, analyse the traces, print a table + CSV");
-  experiment_cmd->add_option("experiment", experiment_path, "experiment YAML file")
+  experiment_cmd->add_option("experiment", experiment_path, "experiment YAML file, or its name in config/experiments")
       ->required()
+      ->transform(teleop::cli::named_config("experiments"))
       ->check(CLI::ExistingFile);
   experiment_cmd->add_option("--profiles", experiment_options.profiles, "only these network profiles (comma-separated)")
       ->delimiter(',');
@@ -83,7 +94,10 @@ int main(int argc, char** argv) {
   teleop::experiment::SoakOptions soak_options;
   CLI::App* soak_cmd = app.add_subcommand(
       "soak", "kill and restart a scenario's nodes at random under a hostile network, measure each recovery");
-  soak_cmd->add_option("soak", soak_path, "soak YAML file")->required()->check(CLI::ExistingFile);
+  soak_cmd->add_option("soak", soak_path, "soak YAML file, or its name in config/experiments (soak)")
+      ->required()
+      ->transform(teleop::cli::named_config("experiments"))
+      ->check(CLI::ExistingFile);
   soak_cmd->add_option("--kills-per-node", soak_options.kills_per_node, "kills of each node (overrides the file)")
       ->check(CLI::Range(1, 10'000));
   soak_cmd->add_option("--seed", soak_options.seed, "seed of the kill schedule and the network (overrides the file)");
@@ -93,13 +107,16 @@ int main(int argc, char** argv) {
   ResetOptions reset_options;
   CLI::App* reset_cmd = app.add_subcommand("reset", "ask a node to clear its latched reflex and follow its commands again");
   reset_cmd->add_option("node", reset_options.target, "the node's name (e.g. follower)")->required();
-  reset_cmd->add_option("-c,--config", reset_options.config_path, "take domain, discovery and security from this node config")
+  reset_cmd->add_option("-c,--config", reset_options.config_path,
+                        "take domain, discovery and security from this node config (a file, or a name in config/nodes)")
+      ->transform(teleop::cli::named_config("nodes"))
       ->check(CLI::ExistingFile);
   reset_cmd->add_option("--domain", reset_options.domain_id, "DDS domain id (overrides the config)")->check(CLI::Range(0, 232));
   reset_cmd->add_option("--timeout", reset_options.timeout_s, "seconds to wait for the node to acknowledge")
       ->check(CLI::Range(0.1, 600.0));
   BusCommands bus_commands(app);
   const teleop::cli::PlotCommand plot(app);
+  const teleop::cli::HandStudyCommand hand_study(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -108,6 +125,7 @@ int main(int argc, char** argv) {
   try {
     if (const auto rc = bus_commands.run()) return *rc;
     if (plot.parsed()) return plot.run();
+    if (hand_study.parsed()) return hand_study.run();
     if (reset_cmd->parsed()) {
       if (send_reset(reset_options)) {
         std::printf("reset sent to %s and acknowledged\n", reset_options.target.c_str());

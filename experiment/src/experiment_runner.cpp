@@ -8,6 +8,7 @@
 
 #include "teleop/common/config.h"
 #include "box_task_analysis.h"
+#include "report_files.h"
 #include "teleop/experiment/plots.h"
 #include "teleop/experiment/results_table.h"
 #include "teleop/launcher/launcher.h"
@@ -74,25 +75,9 @@ void check_runs(const ExperimentConfig& config, const std::vector<SelectedRun>& 
   }
 }
 
-std::string make_report_dir(const std::string& requested, const std::string& name) {
-  if (!requested.empty()) {
-    fs::create_directories(requested);
-    return requested;
-  }
-  std::string pattern = (fs::temp_directory_path() / ("teleop-experiment-" + name + "-XXXXXX")).string();
-  if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("cannot create a report directory in /tmp");
-  return pattern;
-}
-
 // a profile given as a file gets the folder of its name without the directories
 std::string profile_folder(const std::string& profile) {
   return profile.find('/') == std::string::npos ? profile : fs::path(profile).stem().string();
-}
-
-void write_text(const std::string& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  if (!out.flush()) throw std::runtime_error("cannot write " + path);
 }
 
 // the figures beside the CSV and in each run's folder; one that cannot be drawn is a warning: the
@@ -144,7 +129,7 @@ ExperimentResult run_experiment(const ExperimentConfig& config, const Experiment
   check_runs(config, runs, profiles);
 
   ExperimentResult result;
-  result.report_dir = make_report_dir(options.report_dir, config.name);
+  result.report_dir = make_report_dir(options.report_dir, "teleop-experiment-" + config.name + "-");
   result.csv_path =
       options.csv_path.empty() ? (fs::path(result.report_dir) / (config.name + ".csv")).string() : options.csv_path;
   const double duration_s = options.duration_s.value_or(config.duration_s);

@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "parameter_sweep.h"
+#include "teleop/common/data_paths.h"
 #include "teleop/common/version.h"
 
 int main(int argc, char** argv) {
@@ -16,13 +17,14 @@ int main(int argc, char** argv) {
   std::string config_path;
   std::string out_path;
   std::optional<int> jobs;
-  app.add_option("-c,--config", config_path, "YAML sweep configuration (config/sweeps)")->required();
+  app.add_option("-c,--config", config_path, "YAML sweep configuration: a file, or a name in config/sweeps")
+      ->required();
   app.add_option("-o,--out", out_path, "write the table as CSV to this file (default: stdout)");
   app.add_option("-j,--jobs", jobs, "worker processes (overrides sweep.jobs)")->check(CLI::Range(1, 64));
   CLI11_PARSE(app, argc, argv);
   spdlog::set_pattern("[%H:%M:%S.%e] [%^%l%$] %v");
   try {
-    const teleop::ConfigNode root = teleop::ConfigNode::load_file(config_path);
+    const teleop::ConfigNode root = teleop::ConfigNode::load_file(teleop::resolve_config("sweeps", config_path));
     teleop::experiment::SweepConfig config = teleop::experiment::parse_sweep_config(root);
     root.check_all_used();
     if (jobs) config.jobs = *jobs;

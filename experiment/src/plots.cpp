@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "teleop/common/data_paths.h"
+
 extern char** environ;
 
 namespace teleop::experiment {
@@ -47,17 +49,12 @@ int run_command(const std::vector<std::string>& argv, bool quiet) {
 }
 
 std::string package_dir() {
-  std::vector<fs::path> candidates;
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) candidates.push_back(self.parent_path().parent_path() / "share" / "teleop" / "teleop_plot");
-  candidates.emplace_back(TELEOP_PLOT_SOURCE_DIR);
-  candidates.emplace_back(TELEOP_PLOT_INSTALL_DIR);
-  for (const fs::path& dir : candidates) {
-    if (fs::exists(dir / "__main__.py", ec)) return dir.string();
-  }
-  throw PlotError("the plotting package (teleop_plot/__main__.py) is neither in " +
-                  std::string(TELEOP_PLOT_SOURCE_DIR) + " nor in " + TELEOP_PLOT_INSTALL_DIR +
+  const std::string installed = "teleop_plot/__main__.py";
+  const std::string in_source = "scripts/teleop_plot/__main__.py";
+  const fs::path main_py = find_data(installed, in_source);
+  if (!main_py.empty()) return main_py.parent_path().string();
+  throw PlotError("the plotting package (teleop_plot/__main__.py) is in none of " +
+                  data_candidates_text(installed, in_source, DataRoots::current()) +
                   " (install teleop, or build it from its source tree)");
 }
 
@@ -123,6 +120,10 @@ void plot_run(const PlotTool& tool, const std::string& run_dir, const std::strin
 
 void plot_results(const PlotTool& tool, const std::string& csv_path) {
   run_package(tool, {"results", csv_path}, csv_path);
+}
+
+void plot_hand_study(const PlotTool& tool, const std::string& trace_csv, const std::string& out_dir) {
+  run_package(tool, {"hand", trace_csv, out_dir}, trace_csv);
 }
 
 }  // namespace teleop::experiment

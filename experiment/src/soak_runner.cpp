@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "report_files.h"
 #include "soak_analysis.h"
 #include "teleop/common/clock.h"
 #include "teleop/experiment/soak.h"
@@ -107,16 +108,6 @@ const launcher::NodeLaunch& node_of(const launcher::Scenario& scenario, const st
   throw std::runtime_error("soak: no node " + name + " in the scenario");
 }
 
-std::string make_report_dir(const SoakOptions& options) {
-  if (!options.report_dir.empty()) {
-    fs::create_directories(options.report_dir);
-    return options.report_dir;
-  }
-  std::string pattern = (fs::temp_directory_path() / "teleop-soak-XXXXXX").string();
-  if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("soak: cannot make a report folder in /tmp");
-  return pattern;
-}
-
 // each node of `watch` `kills` times, in a seeded random order
 std::vector<std::string> victims(const SoakConfig& config, int kills, std::mt19937_64& rng) {
   std::vector<std::string> out;
@@ -141,7 +132,7 @@ SoakResult run_soak(const SoakConfig& config, const SoakOptions& options) {
   launch.trace_seconds = 10.0;  // the ring only bridges the writer's periods: the file gets every row
 
   SoakResult result;
-  result.report_dir = make_report_dir(options);
+  result.report_dir = make_report_dir(options.report_dir, "teleop-soak-");
   std::printf("[soak    ] %s: %zu kills, seed %llu, network %s, into %s\n", config.name.c_str(), order.size(),
               static_cast<unsigned long long>(seed), config.network.empty() ? "none" : config.network.c_str(),
               result.report_dir.c_str());

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "teleop/common/clock.h"
+#include "teleop/common/data_paths.h"
 #include "teleop/common/version.h"
 #include "teleop/runtime/realtime.h"
 #include "teleop/runtime/shutdown_signal.h"
@@ -175,6 +176,8 @@ int run(const CommandLine& cli, const NodeDescription& description) {
   int64_t started_ns = monotonic_now_ns();
   {
     transport::Participant participant(setup.transport);
+    spdlog::info("{}: QoS profiles from {}, {} topic names", node.name, participant.qos_profiles_source(),
+                 setup.transport.naming == transport::Naming::kRos2 ? "ROS 2" : "plain");
     NodeContext context{node, participant};
     std::unique_ptr<NodeLogic> logic = setup.build(context);
     trace = make_trace_recorder(cli, node, *logic);
@@ -230,7 +233,9 @@ int run_node(int argc, char** argv, const NodeDescription& description) {
   CLI::App app{description.summary, "teleop_" + description.role_name};
   app.set_version_flag("--version", teleop::version_text());
   CommandLine cli;
-  app.add_option("-c,--config", cli.config_path, "YAML configuration of this node")->required();
+  app.add_option("-c,--config", cli.config_path,
+                 "YAML configuration of this node: a file, or a name in config/nodes (e.g. follower)")
+      ->required();
   // the same bound as node.duration_s in the file
   app.add_option("-d,--duration", cli.duration_s, "run time in seconds (overrides node.duration_s; 0 = until signalled)")
       ->check(finite_in(0, 1e6));
@@ -264,6 +269,8 @@ int run_node(int argc, char** argv, const NodeDescription& description) {
   // wake up at the deadline, not up to 50 us later (the kernel's default timer slack)
   prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
   try {
+    // a shipped configuration by name works from any folder, installed or in a build tree
+    cli.config_path = resolve_config("nodes", cli.config_path);
     return run(cli, description);
   } catch (const ConfigError& e) {
     spdlog::error("config error: {}", e.what());

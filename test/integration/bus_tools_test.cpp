@@ -144,5 +144,36 @@ TEST_F(BusToolsTest, ANodeSaysWhichWriterItWaitsForAndWhenItAppears) {
       << follower.output();
 }
 
+// transport.naming: ros2 (docs/transport.md): the follower's DDS topics are rt/..., its types
+// teleop_msgs::msg::dds_::..._; a tool given the node's config lists and echoes them under their
+// teleop names, a tool without it sees the ROS 2 names as they are on the wire.
+TEST_F(BusToolsTest, TopicListAndEchoWorkOnARos2NamedDomain) {
+  const std::string config = config_copy(dir, "follower.yaml", {{"naming: plain", "naming: ros2"}});
+  RunningProcess follower({bin("teleop_follower"), "--config", config, "--domain", domain, "--duration", "30"});
+  ASSERT_TRUE(follower.wait_for_output("waiting for a writer on teleop/leader/joint_command", 15s))
+      << follower.output();
+  EXPECT_NE(follower.output().find(
+                "follower: QoS profiles from config/qos/teleop_profiles.xml (built in), ROS 2 topic names"),
+            std::string::npos)
+      << follower.output();
+
+  const ProcessResult list = tool({"topic", "list", "-c", config});
+  ASSERT_EQ(list.exit_status, 0) << list.output;
+  EXPECT_TRUE(std::regex_search(list.output,
+                                std::regex(R"((^|\n)teleop/follower/joint_state +teleop_msgs::msg::dds_::JointState_)")))
+      << list.output;
+  const ProcessResult echo = tool({"topic", "echo", "teleop/follower/joint_state", "-c", config, "--once"});
+  ASSERT_EQ(echo.exit_status, 0) << echo.output;
+  EXPECT_NE(echo.output.find("  source: follower\n"), std::string::npos) << echo.output;
+  EXPECT_NE(echo.output.find("q_rad: ["), std::string::npos) << echo.output;
+
+  const ProcessResult plain = tool({"topic", "list"});
+  ASSERT_EQ(plain.exit_status, 0) << plain.output;
+  EXPECT_TRUE(std::regex_search(plain.output,
+                                std::regex(R"(rt/teleop/follower/joint_state +teleop_msgs::msg::dds_::JointState_)")))
+      << plain.output;
+  EXPECT_EQ(follower.stop(SIGINT, 20s), 0) << follower.output();
+}
+
 }  // namespace
 }  // namespace teleop::test

@@ -37,9 +37,10 @@ bool is_arm_geom(const mjModel* m, int g) { return (m->geom_contype[g] & (2 | 4)
 TEST(ModelFiles, LoadsEveryModelAndSceneWhenCompiledByMujoco) {
   EXPECT_EQ(mj_version(), 222) << "these models are written for MuJoCo 2.2.2";
   const auto files = top_level_models();
-  const std::vector<std::string> expected{"dual_arm.xml",    "dual_arm_mobile.xml", "left_arm.xml",
-                                          "right_arm.xml",   "panda.xml",           "scene_box_shelf.xml",
-                                          "scene_table.xml", "scene_wall.xml",      "scene_wiping.xml"};
+  const std::vector<std::string> expected{"dual_arm.xml",       "dual_arm_mobile.xml", "left_arm.xml",
+                                          "right_arm.xml",      "panda.xml",           "scene_box_shelf.xml",
+                                          "scene_table.xml",    "scene_wall.xml",      "scene_wiping.xml",
+                                          "svh_hand.xml",       "scene_ur5_svh.xml"};
   for (const auto& name : expected) {
     EXPECT_NE(std::find(files.begin(), files.end(), model_path(name)), files.end()) << name;
   }
@@ -52,6 +53,15 @@ TEST(ModelFiles, LoadsEveryModelAndSceneWhenCompiledByMujoco) {
     for (int i = 0; i < 100; ++i) mj_step(sim.model(), sim.data());
     for (int w = 0; w < mjNWARNING; ++w) EXPECT_EQ(sim.data()->warning[w].number, 0) << "warning " << w;
   }
+}
+
+// a keyframe made to touch: the SVH study's "test" pose presses the index tip on the panel
+// (test/hand/svh_model_test.cpp checks that it is the only contact, 2 mm deep)
+bool intended_contact(const std::string& file, const mjModel* m, int key, const mjContact& con) {
+  const std::string g1 = mj_id2name(m, mjOBJ_GEOM, con.geom1);
+  const std::string g2 = mj_id2name(m, mjOBJ_GEOM, con.geom2);
+  return file == model_path("scene_ur5_svh.xml") && std::string(mj_id2name(m, mjOBJ_KEY, key)) == "test" &&
+         ((g1 == "svh_index_distal" && g2 == "panel") || (g1 == "panel" && g2 == "svh_index_distal"));
 }
 
 TEST(ModelFiles, StartsEveryKeyframeInsideTheJointRangesAndFreeOfArmContactsWhenReset) {
@@ -69,6 +79,7 @@ TEST(ModelFiles, StartsEveryKeyframeInsideTheJointRangesAndFreeOfArmContactsWhen
       }
       for (int c = 0; c < sim.data()->ncon; ++c) {
         const mjContact& con = sim.data()->contact[c];
+        if (intended_contact(file, m, k, con)) continue;
         EXPECT_FALSE(is_arm_geom(m, con.geom1) || is_arm_geom(m, con.geom2))
             << mj_id2name(m, mjOBJ_GEOM, con.geom1) << " touches " << mj_id2name(m, mjOBJ_GEOM, con.geom2);
       }

@@ -8,6 +8,8 @@
 #include <thread>
 #include <vector>
 
+#include "teleop/common/version.h"
+
 namespace teleop::test {
 namespace {
 
@@ -18,6 +20,15 @@ TEST(AllocationCounter, CountsEveryAllocationOfThisThread) {
   v.reserve(100);
   std::string s(100, 'x');
   EXPECT_EQ(counter.count(), 3u);
+}
+
+// teleop's libraries are shared (docs/install.md): their calls to operator new must still reach
+// the test's replacement, or a real-time function in a library would pass "allocates nothing"
+TEST(AllocationCounter, CountsAllocationsInsideTeleopsLibraries) {
+  ScopedAllocationCounter counter;
+  const std::string text = version_text();  // builds a string longer than the small-string buffer
+  EXPECT_GT(text.size(), 15u);
+  EXPECT_GE(counter.count(), 1u);
 }
 
 TEST(AllocationCounter, IgnoresOtherThreads) {

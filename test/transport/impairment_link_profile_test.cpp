@@ -2,6 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "teleop/transport/impairment/impairment_config.h"
+
 namespace teleop::transport::impairment {
 namespace {
 
@@ -73,6 +80,21 @@ TEST(LinkProfile, GilbertElliottExpectedLossCombinesBothStates) {
   LossSpec ge{LossModel::kGilbertElliott, 0, 0.1, 0.3, 0.8, 0.01};
   EXPECT_NEAR(ge.expected_loss_rate(), 0.25 * 0.8 + 0.75 * 0.01, 1e-12);
   EXPECT_NEAR(ge.expected_bad_run_length(), 1 / 0.3, 1e-12);
+}
+
+// a node config in a folder of its own (no network/ beside it) still names the shipped profiles;
+// a profile beside it comes first
+TEST(ProfilePath, FallsBackToTeleopsOwnProfilesByName) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("teleop_profile_path_" + std::to_string(getpid()));
+  fs::create_directories(dir / "network");
+  const std::string node_config = (dir / "node.yaml").string();
+  EXPECT_EQ(resolve_profile_path("wan-35ms", node_config),
+            std::string(TELEOP_SOURCE_DIR) + "/config/network/wan-35ms.yaml");
+  EXPECT_EQ(resolve_profile_path("no-such-profile", node_config), "");
+  std::ofstream((dir / "network" / "wan-35ms.yaml").string()) << "profile: {name: mine}\n";
+  EXPECT_EQ(resolve_profile_path("wan-35ms", node_config), (dir / "network" / "wan-35ms.yaml").string());
+  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_helpers.h"
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,9 +37,12 @@ TEST(ParseParticipantConfig, AppliesDefaultsWhenOnlyDomainGiven) {
   EXPECT_FALSE(c.shm);  // opt-in: Fast DDS 2.9 allocates per sample in it
   EXPECT_TRUE(c.initial_peers.empty());
   EXPECT_TRUE(c.interface_whitelist.empty());
-  EXPECT_EQ(c.liveliness_lease_ns, defaults.liveliness_lease_ns);
-  EXPECT_EQ(c.participant_lease_ns, defaults.participant_lease_ns);
-  EXPECT_EQ(c.stream_deadline_ns, defaults.stream_deadline_ns);
+  // unset: the QoS profiles decide
+  EXPECT_FALSE(c.liveliness_lease_ns.has_value());
+  EXPECT_FALSE(c.participant_lease_ns.has_value());
+  EXPECT_FALSE(c.stream_deadline_ns.has_value());
+  EXPECT_EQ(c.qos_profiles, "");
+  EXPECT_EQ(c.naming, Naming::kPlain);
 }
 
 TEST(ParseParticipantConfig, ReadsEveryKeyWhenAllGiven) {
@@ -126,9 +131,29 @@ TEST(ParseParticipantConfig, RejectsBothTransportsOff) {
 TEST(ParseParticipantConfig, RejectsParticipantLeaseShorterThanLivelinessLease) {
   EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  liveliness_lease_ms: 1000\n  participant_lease_ms: 999\n"),
             "node.yaml:4: transport.participant_lease_ms: must not be shorter than liveliness_lease_ms");
-  // also when the participant lease is the default (3000 ms) and only the liveliness lease is set
-  EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  liveliness_lease_ms: 5000\n"),
-            "node.yaml:2: transport.participant_lease_ms: must not be shorter than liveliness_lease_ms");
+  // with one of them given here the other is the QoS profiles': the participant checks the pair
+  // it resolves (qos_profiles_test: LivelinessLeaseLongerThanTheParticipantLeaseIsAConfigError)
+  EXPECT_EQ(parse("transport:\n  domain_id: 0\n  liveliness_lease_ms: 5000\n").liveliness_lease_ns, 5'000'000'000);
+}
+
+TEST(ParseParticipantConfig, ReadsNaming) {
+  EXPECT_EQ(parse("transport:\n  domain_id: 0\n  naming: ros2\n").naming, Naming::kRos2);
+  EXPECT_EQ(parse("transport:\n  domain_id: 0\n  naming: plain\n").naming, Naming::kPlain);
+  EXPECT_EQ(error_of("transport:\n  domain_id: 0\n  naming: ros\n"),
+            "node.yaml:3: transport.naming: 'ros' is not one of: plain, ros2");
+}
+
+TEST(ParseParticipantConfig, ResolvesQosProfilesRelativeToTheConfigFile) {
+  test::TempDir dir("teleop_participant_config");
+  const std::string xml = dir.write("profiles.xml", "<dds/>\n");
+  const std::string yaml = dir.write("node.yaml", "transport:\n  domain_id: 0\n  qos_profiles: profiles.xml\n");
+  const ConfigNode root = ConfigNode::load_file(yaml);
+  EXPECT_EQ(parse_participant_config(root.child("transport"), "leader").qos_profiles, xml);
+  // a file that is not there is the YAML's error, before any participant exists
+  const std::string missing = dir.write("missing.yaml", "transport:\n  domain_id: 0\n  qos_profiles: nope.xml\n");
+  const std::string message = test::error_of<ConfigError>(
+      [&] { parse_participant_config(ConfigNode::load_file(missing).child("transport"), "leader"); });
+  EXPECT_NE(message.find("transport.qos_profiles"), std::string::npos) << message;
 }
 
 TEST(ParseParticipantConfig, RejectsLeasesAndDeadlineOutOfRange) {

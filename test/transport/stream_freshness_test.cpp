@@ -25,6 +25,21 @@ TEST(StreamFreshness, IsOffUntilConfigured) {
   EXPECT_EQ(f.lease_ns(), kLease);
 }
 
+TEST(StreamFreshness, WithoutLeaseOrDeadlineNothingLapsesOrIsMissed) {
+  StreamFreshness f;
+  f.configure(0, 0);
+  EXPECT_TRUE(f.enabled());
+  EXPECT_EQ(f.lease_ns(), INT64_MAX);
+  EXPECT_EQ(f.deadline_ns(), 0);
+  f.on_arrival(kMs);
+  EXPECT_EQ(f.alive(100'000 * kMs, 1), 1);
+  EXPECT_EQ(f.lapses(100'000 * kMs), 0u);
+  EXPECT_EQ(f.deadline_missed(100'000 * kMs), 0u);
+  f.on_arrival(200'000 * kMs);
+  EXPECT_EQ(f.lapses(200'000 * kMs), 0u);
+  EXPECT_EQ(f.deadline_missed(200'000 * kMs), 0u);
+}
+
 TEST(StreamFreshness, CountsNothingBeforeTheFirstSample) {
   Configured f;
   EXPECT_EQ(f.alive(10'000 * kMs, 1), 0);

@@ -3,6 +3,7 @@
 #include <fastrtps/utils/IPLocator.h>
 
 #include <cstring>
+#include <optional>
 #include <vector>
 
 namespace teleop::transport {
@@ -44,12 +45,15 @@ void fill_qos(const Qos& qos, EndpointInfo& info) {
   info.lease_ns = to_ns(qos.m_liveliness.lease_duration);
 }
 
+// nullopt for an endpoint whose topic is not one of `naming`'s
 template <typename ProxyData>
-EndpointInfo endpoint_of(const ProxyData& data, bool is_writer) {
+std::optional<EndpointInfo> endpoint_of(const ProxyData& data, bool is_writer, Naming naming) {
+  auto topic = teleop_topic_name(naming, data.topicName().to_string());
+  if (!topic) return std::nullopt;
   EndpointInfo info;
   info.guid = id_of(data.guid());
   info.is_writer = is_writer;
-  info.topic = data.topicName().to_string();
+  info.topic = std::move(*topic);
   info.type = data.typeName().to_string();
   fill_qos(data.m_qos, info);
   return info;
@@ -85,14 +89,14 @@ void DiscoveryListener::on_participant_discovery(eprosima::fastdds::dds::DomainP
 void DiscoveryListener::on_publisher_discovery(eprosima::fastdds::dds::DomainParticipant*, WriterDiscoveryInfo&& info) {
   if (!observer_) return;
   const bool gone = info.status == WriterDiscoveryInfo::REMOVED_WRITER;
-  observer_->on_endpoint(endpoint_of(info.info, true), !gone);
+  if (auto endpoint = endpoint_of(info.info, true, naming_)) observer_->on_endpoint(*endpoint, !gone);
 }
 
 void DiscoveryListener::on_subscriber_discovery(eprosima::fastdds::dds::DomainParticipant*,
                                                 ReaderDiscoveryInfo&& info) {
   if (!observer_) return;
   const bool gone = info.status == ReaderDiscoveryInfo::REMOVED_READER;
-  observer_->on_endpoint(endpoint_of(info.info, false), !gone);
+  if (auto endpoint = endpoint_of(info.info, false, naming_)) observer_->on_endpoint(*endpoint, !gone);
 }
 
 }  // namespace teleop::transport

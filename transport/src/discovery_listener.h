@@ -8,14 +8,17 @@
 
 #include "teleop/transport/discovery_observer.h"
 #include "teleop/transport/impairment/impairment_engine.h"
+#include "teleop/transport/naming.h"
 
 namespace teleop::transport {
 
 class DiscoveryListener : public eprosima::fastdds::dds::DomainParticipantListener {
  public:
-  /// Either may be null.
-  DiscoveryListener(std::shared_ptr<impairment::ImpairmentEngine> engine, DiscoveryObserver* observer)
-      : engine_(std::move(engine)), observer_(observer) {}
+  /// Either may be null. The observer hears of topics by their teleop names under `naming`
+  /// (naming.h): a tool works with the same names on a plain and a ros2-named domain.
+  DiscoveryListener(std::shared_ptr<impairment::ImpairmentEngine> engine, DiscoveryObserver* observer,
+                    Naming naming)
+      : engine_(std::move(engine)), observer_(observer), naming_(naming) {}
 
   void on_participant_discovery(eprosima::fastdds::dds::DomainParticipant*,
                                 eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override;
@@ -27,6 +30,7 @@ class DiscoveryListener : public eprosima::fastdds::dds::DomainParticipantListen
  private:
   std::shared_ptr<impairment::ImpairmentEngine> engine_;
   DiscoveryObserver* observer_;
+  Naming naming_;
 };
 
 /// The property a participant announces its host name in.

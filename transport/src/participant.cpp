@@ -4,7 +4,6 @@
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 #include <fastrtps/utils/IPLocator.h>
-#include <fastrtps/xmlparser/XMLProfileManager.h>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
@@ -16,7 +15,6 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
-#include <mutex>
 #include <stdexcept>
 
 #include <spdlog/spdlog.h>
@@ -24,6 +22,7 @@
 #include "teleop/common/clock.h"
 #include "discovery_listener.h"
 #include "impairment/impairing_transport.h"
+#include "qos_profile_loader.h"
 #include "raw_payload_type.h"
 #include "teleop/transport/qos.h"
 #include "security_files.h"
@@ -115,14 +114,16 @@ void add_security(const SecurityConfig& security, dds::DomainParticipantQos& qos
   properties.emplace_back("dds.sec.crypto.plugin", "builtin.AES-GCM-GMAC");
 }
 
-dds::DomainParticipantQos participant_qos(const ParticipantConfig& config,
+// The participant profile (qos_profile_loader.h) with what the node's YAML decides: name,
+// transports, discovery and security replace whatever the profile says about them.
+dds::DomainParticipantQos participant_qos(dds::DomainParticipantQos qos, const ParticipantConfig& config,
                                           const std::shared_ptr<impairment::ImpairmentEngine>& engine) {
-  dds::DomainParticipantQos qos = dds::PARTICIPANT_QOS_DEFAULT;
   qos.name(config.name);
   // the tools show which host each node runs on
   char host[256] = {};
   if (gethostname(host, sizeof(host) - 1) == 0) qos.properties().properties().emplace_back(kHostProperty, host, true);
   qos.transport().use_builtin_transports = false;
+  qos.transport().user_transports.clear();
   // impaired traffic must all go through the chaining transport: shared memory would bypass it
   if (config.shm && !engine) {
     qos.transport().user_transports.push_back(std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
@@ -147,34 +148,24 @@ dds::DomainParticipantQos participant_qos(const ParticipantConfig& config,
       qos.transport().user_transports.push_back(udp);
     }
   }
+  qos.wire_protocol().builtin.initialPeersList.clear();
   for (const auto& peer : config.initial_peers) {
     qos.wire_protocol().builtin.initialPeersList.push_back(peer_locator(peer));
   }
-  if (config.discovery == DiscoveryMode::kServer) add_discovery_servers(config.discovery_servers, qos);
-  if (config.security.enabled()) add_security(config.security, qos);
   auto& discovery = qos.wire_protocol().builtin.discovery_config;
-  discovery.leaseDuration = to_dds_duration(config.participant_lease_ns);
-  discovery.leaseDuration_announcementperiod = to_dds_duration(config.participant_lease_ns / 3);
+  discovery.discoveryProtocol = eprosima::fastrtps::rtps::DiscoveryProtocol_t::SIMPLE;
+  discovery.m_DiscoveryServers.clear();
+  if (config.discovery == DiscoveryMode::kServer) add_discovery_servers(config.discovery_servers, qos);
+  // security is the YAML's alone: a profile's dds.sec.* properties would mix with its files
+  auto& properties = qos.properties().properties();
+  std::erase_if(properties, [](const auto& p) { return p.name().starts_with("dds.sec."); });
+  if (config.security.enabled()) add_security(config.security, qos);
   return qos;
-}
-
-// Intra-process delivery hands samples from a writer straight into same-process readers: it
-// allocates on the writer's (control) thread in Fast DDS 2.9 and bypasses the transports that
-// traffic is observed and impaired in. Nodes are separate processes, so nothing is lost.
-void disable_intraprocess_delivery() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    using eprosima::fastrtps::xmlparser::XMLProfileManager;
-    eprosima::fastrtps::LibrarySettingsAttributes settings = XMLProfileManager::library_settings();
-    settings.intraprocess_delivery = eprosima::fastrtps::INTRAPROCESS_OFF;
-    XMLProfileManager::library_settings(settings);
-  });
 }
 
 }  // namespace
 
 Participant::Participant(const ParticipantConfig& config, DiscoveryObserver* observer) : config_(config) {
-  disable_intraprocess_delivery();
   dds::StatusMask mask = dds::StatusMask::none();
   if (config.impairment.enabled()) {
     if (!config.udpv4) throw std::runtime_error("network impairment needs the udpv4 transport");
@@ -183,21 +174,39 @@ Participant::Participant(const ParticipantConfig& config, DiscoveryObserver* obs
                  config.impairment.seed, config.impairment.exclude_discovery ? ", discovery unimpaired" : "");
     for (const auto& l : config.impairment.links) spdlog::info("{}: link to {}: profile {}", config.name, l.to, l.profile.name);
   }
-  if (impairment_ || observer) discovery_listener_ = std::make_unique<DiscoveryListener>(impairment_, observer);
+  if (impairment_ || observer) {
+    discovery_listener_ = std::make_unique<DiscoveryListener>(impairment_, observer, config.naming);
+  }
   if (config.security.enabled()) verify_security_files(config.security);
+  register_type_objects();
+  const QosProfileLoader profiles(config);
+  qos_profiles_source_ = profiles.source();
+  const dds::DomainParticipantQos qos = participant_qos(profiles.participant_qos(), config, impairment_);
   auto* factory = dds::DomainParticipantFactory::get_instance();
-  participant_ = factory->create_participant(static_cast<dds::DomainId_t>(config.domain_id),
-                                             participant_qos(config, impairment_), discovery_listener_.get(), mask);
+  participant_ = factory->create_participant(static_cast<dds::DomainId_t>(config.domain_id), qos,
+                                             discovery_listener_.get(), mask);
   if (participant_ == nullptr) {
     throw std::runtime_error(
         "DDS refused to create participant '" + config.name + "' in domain " + std::to_string(config.domain_id) +
         (config.security.enabled() ? " (security on: see the Fast DDS security errors above)" : ""));
   }
+  try {
+    create_entities(qos, profiles);
+  } catch (...) {
+    // no destructor runs for a half-built object: the participant would outlive it
+    participant_->delete_contained_entities();
+    factory->delete_participant(participant_);
+    throw;
+  }
+}
+
+void Participant::create_entities(const dds::DomainParticipantQos& qos, const QosProfileLoader& profiles) {
   publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
   if (publisher_ == nullptr || subscriber_ == nullptr) {
-    throw std::runtime_error("DDS refused to create the publisher/subscriber of '" + config.name + "'");
+    throw std::runtime_error("DDS refused to create the publisher/subscriber of '" + config_.name + "'");
   }
+  endpoint_qos_ = profiles.endpoint_qos(*publisher_, *subscriber_, qos);
 }
 
 Participant::~Participant() {
@@ -210,7 +219,9 @@ Participant::~Participant() {
 }
 
 std::string Participant::register_type_support(dds::TypeSupport type) {
-  const std::string name = type.get_type_name();
+  // renamed before registering, so that the type's own name and the announced one agree
+  const std::string name = dds_type_name(config_.naming, type.get_type_name());
+  if (name != type.get_type_name()) type->setName(name.c_str());
   if (participant_->find_type(name).empty()) {
     if (type.register_type(participant_) != eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
       throw std::runtime_error("DDS refused to register type " + name);
@@ -222,7 +233,8 @@ std::string Participant::register_type_support(dds::TypeSupport type) {
 dds::Topic* Participant::topic_for(const std::string& name, const std::string& type_name) {
   auto it = topics_.find(name);
   if (it != topics_.end()) return it->second;
-  dds::Topic* topic = participant_->create_topic(name, type_name, dds::TOPIC_QOS_DEFAULT);
+  dds::Topic* topic =
+      participant_->create_topic(dds_topic_name(config_.naming, name), type_name, dds::TOPIC_QOS_DEFAULT);
   if (topic == nullptr) throw std::runtime_error("DDS refused to create topic " + name);
   topics_.emplace(name, topic);
   return topic;
@@ -232,8 +244,11 @@ std::pair<dds::DataWriter*, const EndpointStatus*> Participant::create_writer(co
                                                                               const std::string& type_name,
                                                                               QosPreset preset) {
   auto listener = std::make_unique<WriterListener>();
-  dds::DataWriter* writer =
-      publisher_->create_datawriter(topic_for(topic, type_name), writer_qos(preset, config_), listener.get());
+  // streams: no DDS deadline or liveliness, their readers check both (stream_freshness.h)
+  dds::DataWriter* writer = publisher_->create_datawriter(
+      topic_for(topic, type_name),
+      preset == QosPreset::kStream ? without_dds_timers(endpoint_qos_.writer(preset)) : endpoint_qos_.writer(preset),
+      listener.get());
   if (writer == nullptr) throw std::runtime_error("DDS refused to create a writer on " + topic);
   const EndpointStatus* status = &listener->status;
   writer_listeners_.push_back(std::move(listener));
@@ -249,9 +264,14 @@ std::pair<dds::DataReader*, EndpointStatus*> Participant::create_reader(const st
   listener->take = std::move(take);
   listener->keep_alive = std::move(keep_alive);
   // streams: deadline and liveliness from arrivals, not DDS timers (stream_freshness.h)
-  if (preset == QosPreset::kStream) listener->status.freshness.configure(config_.liveliness_lease_ns, config_.stream_deadline_ns);
-  dds::DataReader* reader =
-      subscriber_->create_datareader(topic_for(topic, type_name), reader_qos(preset, config_), listener.get());
+  const bool stream = preset == QosPreset::kStream;
+  if (stream) {
+    const StreamChecks checks = stream_checks(endpoint_qos_.reader(preset));
+    listener->status.freshness.configure(checks.lease_ns, checks.deadline_ns);
+  }
+  dds::DataReader* reader = subscriber_->create_datareader(
+      topic_for(topic, type_name),
+      stream ? without_dds_timers(endpoint_qos_.reader(preset)) : endpoint_qos_.reader(preset), listener.get());
   if (reader == nullptr) throw std::runtime_error("DDS refused to create a reader on " + topic);
   EndpointStatus* status = &listener->status;
   reader_listeners_.push_back(std::move(listener));

@@ -106,6 +106,26 @@ SecurityConfig parse_security(const ConfigNode& section) {
   return s;
 }
 
+// the QoS profiles file and the keys that override it; where both leases are given here they are
+// checked here, else against the profiles' values when the participant resolves them
+void parse_qos(const ConfigNode& section, ParticipantConfig& c) {
+  if (section.has("qos_profiles")) c.qos_profiles = section.get_path("qos_profiles");
+  if (section.has("liveliness_lease_ms")) {
+    c.liveliness_lease_ns = section.get_int("liveliness_lease_ms", kLeaseMs) * 1'000'000;
+  }
+  if (section.has("participant_lease_ms")) {
+    c.participant_lease_ns = section.get_int("participant_lease_ms", kLeaseMs) * 1'000'000;
+  }
+  if (c.participant_lease_ns && c.liveliness_lease_ns && *c.participant_lease_ns < *c.liveliness_lease_ns) {
+    throw section.error("participant_lease_ms", "must not be shorter than liveliness_lease_ms");
+  }
+  if (section.has("stream_deadline_ms")) {
+    c.stream_deadline_ns = static_cast<int64_t>(section.get_double("stream_deadline_ms", Range{0.1, 60'000}) * 1e6);
+  }
+  const std::string naming = section.get_choice("naming", {"plain", "ros2"}, "plain");
+  c.naming = naming == "ros2" ? Naming::kRos2 : Naming::kPlain;
+}
+
 }  // namespace
 
 const char* discovery_mode_name(DiscoveryMode mode) { return kModeNames[static_cast<int>(mode)]; }
@@ -124,12 +144,7 @@ ParticipantConfig parse_participant_config(const ConfigNode& section, const std:
   for (const auto& itf : c.interface_whitelist) {
     if (!is_ipv4(itf)) throw section.error("interface_whitelist", "'" + itf + "' is not an IPv4 address");
   }
-  c.liveliness_lease_ns = section.get_int("liveliness_lease_ms", kLeaseMs, 250) * 1'000'000;
-  c.participant_lease_ns = section.get_int("participant_lease_ms", kLeaseMs, 3000) * 1'000'000;
-  if (c.participant_lease_ns < c.liveliness_lease_ns) {
-    throw section.error("participant_lease_ms", "must not be shorter than liveliness_lease_ms");
-  }
-  c.stream_deadline_ns = static_cast<int64_t>(section.get_double("stream_deadline_ms", Range{0.1, 60'000}, 5.0) * 1e6);
+  parse_qos(section, c);
   c.security = parse_security(section);
   if (auto imp = section.optional_child("impairment")) c.impairment = impairment::parse_impairment_config(*imp);
   return c;

@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <set>
 
+#include "teleop/common/data_paths.h"
+
 namespace teleop::transport::impairment {
 namespace fs = std::filesystem;
 
@@ -13,7 +15,8 @@ std::string resolve_profile_path(const std::string& profile, const std::string& 
                                     base / "network" / (profile + ".yaml")}) {
     if (fs::is_regular_file(candidate)) return candidate.lexically_normal().string();
   }
-  return {};
+  // a node config outside any config/ tree (a user's own folder) still names the shipped profiles
+  return find_named_config("network", profile).string();
 }
 
 ImpairmentConfig parse_impairment_config(const ConfigNode& section) {

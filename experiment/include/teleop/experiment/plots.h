@@ -41,4 +41,9 @@ void plot_run(const PlotTool& tool, const std::string& run_dir, const std::strin
 /// `<csv stem>_<metric>.png`. Throws PlotError.
 void plot_results(const PlotTool& tool, const std::string& csv_path);
 
+/// Writes the hand study's figures of its trace CSV (docs/hand.md) into `out_dir`: the index
+/// tip's force over time per run (the paper's Fig. 4) and two joints' positions (Figs. 5, 6).
+/// Throws PlotError.
+void plot_hand_study(const PlotTool& tool, const std::string& trace_csv, const std::string& out_dir);
+
 }  // namespace teleop::experiment

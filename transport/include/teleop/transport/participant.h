@@ -17,6 +17,7 @@
 #include "teleop/transport/discovery_observer.h"
 #include "teleop/transport/impairment/impairment_engine.h"
 #include "teleop/transport/participant_config.h"
+#include "teleop/transport/qos_profiles.h"
 #include "teleop/transport/raw_endpoint.h"
 #include "teleop/transport/reader.h"
 #include "teleop/transport/sample_types.h"
@@ -30,6 +31,7 @@ namespace teleop::transport {
 using SampleCallback = std::function<void(const void* sample)>;
 
 class DiscoveryListener;
+class QosProfileLoader;
 
 /// One of the participant's readers, as NodeStatus and the flow watch see it.
 struct ReaderFlow {
@@ -39,7 +41,8 @@ struct ReaderFlow {
 
 class Participant {
  public:
-  /// Creates the DDS participant. Throws std::runtime_error when DDS refuses the configuration.
+  /// Creates the DDS participant with the QoS of its profiles (qos_profiles.h). Throws ConfigError
+  /// for a bad profiles file, std::runtime_error when DDS refuses the configuration.
   /// `observer` (tools; may be null) hears of every participant and endpoint discovered.
   explicit Participant(const ParticipantConfig& config, DiscoveryObserver* observer = nullptr);
   ~Participant();
@@ -88,6 +91,10 @@ class Participant {
   ParticipantId id() const;
 
   const ParticipantConfig& config() const { return config_; }
+  /// The QoS its writers and readers get, per preset: profiles plus the YAML's overrides.
+  const EndpointQos& endpoint_qos() const { return endpoint_qos_; }
+  /// Where the QoS profiles came from: a path and what chose it (for a node's log).
+  const std::string& qos_profiles_source() const { return qos_profiles_source_; }
   /// The impairment of outgoing traffic; null when none is configured.
   const impairment::ImpairmentEngine* impairment() const { return impairment_.get(); }
   eprosima::fastdds::dds::DomainParticipant* dds() { return participant_; }
@@ -97,12 +104,15 @@ class Participant {
   struct ReaderListener;
   using TakeFunction = std::function<void(eprosima::fastdds::dds::DataReader*)>;
 
+  // registers T under its DDS name of the configured naming; returns that name
   template <typename T>
   std::string register_type() {
     eprosima::fastdds::dds::TypeSupport type(new typename PubSubTypeOf<T>::type());
     return register_type_support(type);
   }
   std::string register_type_support(eprosima::fastdds::dds::TypeSupport type);
+  // the publisher, the subscriber and the endpoint QoS, once the participant exists
+  void create_entities(const eprosima::fastdds::dds::DomainParticipantQos& qos, const QosProfileLoader& profiles);
   eprosima::fastdds::dds::Topic* topic_for(const std::string& name, const std::string& type_name);
   std::pair<eprosima::fastdds::dds::DataWriter*, const EndpointStatus*> create_writer(const std::string& topic,
                                                                                       const std::string& type_name,
@@ -112,6 +122,8 @@ class Participant {
       std::shared_ptr<void> keep_alive);
 
   ParticipantConfig config_;
+  EndpointQos endpoint_qos_;
+  std::string qos_profiles_source_;
   std::shared_ptr<impairment::ImpairmentEngine> impairment_;
   std::unique_ptr<DiscoveryListener> discovery_listener_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;

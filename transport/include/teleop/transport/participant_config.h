@@ -8,6 +8,7 @@
 
 #include "teleop/common/config.h"
 #include "teleop/transport/impairment/impairment_config.h"
+#include "teleop/transport/naming.h"
 
 namespace teleop::transport {
 
@@ -58,12 +59,19 @@ struct ParticipantConfig {
   std::vector<DiscoveryServer> discovery_servers;
   /// Network interfaces (IPv4 addresses) UDP may use, loopback always added; empty = all.
   std::vector<std::string> interface_whitelist;
-  /// A writer that stays silent longer than this is considered dead by its readers.
-  int64_t liveliness_lease_ns = 250'000'000;
+  /// The Fast DDS XML profiles file the QoS comes from (qos_profiles.h); empty: the
+  /// FASTRTPS_DEFAULT_PROFILES_FILE if it defines the teleop profiles, else the built-in
+  /// config/qos/teleop_profiles.xml.
+  std::string qos_profiles;
+  /// The three below override the QoS profiles' values where set (unset: the profiles decide).
+  /// A writer that stays silent longer than this is considered dead by its readers (every preset).
+  std::optional<int64_t> liveliness_lease_ns;
   /// A participant silent longer than this is removed from discovery.
-  int64_t participant_lease_ns = 3'000'000'000;
+  std::optional<int64_t> participant_lease_ns;
   /// Deadline of the 1 kHz streams: a reader notices when no sample came within it.
-  int64_t stream_deadline_ns = 5'000'000;
+  std::optional<int64_t> stream_deadline_ns;
+  /// DDS names of topics and types: teleop's own, or ROS 2's (naming.h).
+  Naming naming = Naming::kPlain;
   /// Authentication, access control and encryption; off when no files are given.
   SecurityConfig security;
   /// Network impairment of this participant's outgoing traffic (off when no links).

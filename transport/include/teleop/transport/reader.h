@@ -74,6 +74,14 @@ class Reader {
     const auto& lease = reader_->get_qos().liveliness().lease_duration;
     return static_cast<int64_t>(lease.seconds) * 1'000'000'000 + static_cast<int64_t>(lease.nanosec);
   }
+  /// The requested deadline (what the QoS profiles and the YAML made it); 0: none. A stream's
+  /// is checked by the reader (StreamFreshness), not requested from DDS.
+  int64_t deadline_ns() const {
+    if (status_->freshness.enabled()) return status_->freshness.deadline_ns();
+    const auto& period = reader_->get_qos().deadline().period;
+    if (period == eprosima::fastrtps::c_TimeInfinite) return 0;
+    return static_cast<int64_t>(period.seconds) * 1'000'000'000 + static_cast<int64_t>(period.nanosec);
+  }
   bool valid() const { return reader_ != nullptr; }
 
   /// Whether the node needs a writer on this flow (EndpointStatus::awaited). Setup time.

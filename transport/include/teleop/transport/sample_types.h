@@ -16,13 +16,16 @@ struct SampleType {
   std::string dds_name;
   /// The ROS 2 style name recordings store, e.g. "teleop/msg/JointState".
   std::string bag_name;
+  /// The DDS type name under ROS 2 naming (naming.h), e.g. "teleop_msgs::msg::dds_::JointState_".
+  std::string ros2_name;
   /// The largest serialized size, CDR encapsulation included [bytes].
   uint32_t max_serialized_size = 0;
 };
 
 /// Every sample type of idl/.
 const std::vector<SampleType>& sample_types();
-/// The type of that DDS or ROS 2 style name; null when it is not a teleop type.
+/// The type of that DDS name (plain or ROS 2 naming) or ROS 2 style name; null when it is not a
+/// teleop type.
 const SampleType* find_sample_type(std::string_view name);
 
 /// A topic of topics.h with a fixed name: what a recorder can subscribe to before any writer

@@ -27,14 +27,18 @@ namespace teleop::transport {
 
 class StreamFreshness {
  public:
-  /// Setup time, before the reader exists: the liveliness lease and the deadline [ns]. Not
-  /// called (both 0): the reader is not a stream, DDS checks whatever its QoS asks.
+  /// Setup time, before the reader exists: the liveliness lease and the deadline [ns], 0: none
+  /// (no lapse, no miss). Not called: the reader is not a stream, DDS checks what its QoS asks.
   void configure(int64_t lease_ns, int64_t deadline_ns) {
-    lease_ns_ = lease_ns;
-    deadline_ns_ = deadline_ns;
+    lease_ns_ = lease_ns > 0 ? lease_ns : INT64_MAX;
+    deadline_ns_ = deadline_ns > 0 ? deadline_ns : 0;
+    configured_ = true;
   }
-  bool enabled() const { return lease_ns_ > 0; }
+  bool enabled() const { return configured_; }
+  /// INT64_MAX: no lease.
   int64_t lease_ns() const { return lease_ns_; }
+  /// 0: no deadline.
+  int64_t deadline_ns() const { return deadline_ns_; }
 
   /// A sample arrived at `now_ns` (monotonic). Listener thread.
   void on_arrival(int64_t now_ns) {
@@ -116,7 +120,8 @@ class StreamFreshness {
     return s.missed + static_cast<uint64_t>((now_ns - s.last_ns) / deadline_ns_);
   }
 
-  int64_t lease_ns_ = 0;
+  bool configured_ = false;
+  int64_t lease_ns_ = INT64_MAX;
   int64_t deadline_ns_ = 0;
   std::atomic_flag updating_ = ATOMIC_FLAG_INIT;
   std::atomic<uint32_t> seq_{0};

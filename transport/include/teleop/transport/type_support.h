@@ -32,4 +32,11 @@ TELEOP_PUBSUB_TYPE(ObjectPose)
 
 #undef TELEOP_PUBSUB_TYPE
 
+/// Registers the XTypes type objects of every teleop type with Fast DDS, once per process (the
+/// generated registration is guarded: idl/register_types_once.cmake). Writers and readers created
+/// afterwards announce their type in discovery, so that dynamic-type tools can read the samples.
+/// A sample's constructor registers its file's types too, but a participant may create endpoints
+/// before any sample exists. Setup time.
+void register_type_objects();
+
 }  // namespace teleop::transport

@@ -31,10 +31,12 @@ struct ImpairmentConfig {
 
 /// Reads `impairment:` of a transport section. Profile files are found relative to the config
 /// file, then by name in the config/network folder next to it (`wan-35ms` ->
-/// ../network/wan-35ms.yaml). Throws ConfigError naming file and key.
+/// ../network/wan-35ms.yaml), then by name among teleop's own profiles (common/data_paths.h).
+/// Throws ConfigError naming file and key.
 ImpairmentConfig parse_impairment_config(const ConfigNode& section);
 
-/// Resolves a profile given by path or by name, relative to `base_file`'s folder.
+/// Resolves a profile given by path or by name, relative to `base_file`'s folder, else by name in
+/// teleop's config/network (installed or of the source tree). Empty when there is none.
 std::string resolve_profile_path(const std::string& profile, const std::string& base_file);
 
 }  // namespace teleop::transport::impairment

@@ -1,0 +1,66 @@
+# What an install of teleop holds beyond the targets themselves (cmake/TeleopTarget.cmake installs
+# those), and the Debian package made from it. docs/install.md describes the result.
+include(CMakePackageConfigHelpers)
+
+set(TELEOP_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/teleop)
+set(TELEOP_DATA_DIR ${CMAKE_INSTALL_DATADIR}/teleop)
+
+# find_package(teleop 0.1) -> teleop::transport, teleop::control, ...
+install(EXPORT teleopTargets NAMESPACE teleop:: DESTINATION ${TELEOP_CMAKE_DIR})
+configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/teleopConfig.cmake.in
+  ${CMAKE_BINARY_DIR}/teleopConfig.cmake INSTALL_DESTINATION ${TELEOP_CMAKE_DIR})
+# Before 1.0 a minor release may change the API (semantic versioning's 0.y rule), so a consumer
+# asking for 0.1 gets any 0.1.z and nothing else; from 1.0 on this becomes SameMajorVersion.
+write_basic_package_version_file(${CMAKE_BINARY_DIR}/teleopConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_BINARY_DIR}/teleopConfig.cmake ${CMAKE_BINARY_DIR}/teleopConfigVersion.cmake
+  DESTINATION ${TELEOP_CMAKE_DIR})
+
+# The data the executables look up by name (common/data_paths.h): scenarios, nodes, network
+# profiles, experiments, sweeps, tasks, trajectories and the MuJoCo models, the generated arms
+# included (config/models/generated/ is rendered into the source tree at configure time). The
+# templates and their generator only matter to a source tree.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/config/ DESTINATION ${TELEOP_DATA_DIR}/config
+  PATTERN templates EXCLUDE
+  PATTERN generate_arms.cmake EXCLUDE)
+# the data model, for peers written against the IDL rather than against teleop::msg
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/idl/ DESTINATION ${TELEOP_DATA_DIR}/idl FILES_MATCHING PATTERN "*.idl"
+  PATTERN ros2 EXCLUDE)
+# the ROS 2 message package of the same samples (transport.naming: ros2; docs/transport.md), to
+# copy into a colcon workspace
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/idl/ros2/teleop_msgs DESTINATION ${TELEOP_DATA_DIR}/ros2)
+install(FILES ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR} RENAME copyright)
+
+# everything the install copies and nothing else (no tests, no benchmarks): what the package
+# script builds, what the install test needs built
+add_custom_target(teleop_installables)
+get_property(installed_targets GLOBAL PROPERTY TELEOP_INSTALLED_TARGETS)
+add_dependencies(teleop_installables ${installed_targets})
+
+# `cpack -G DEB` in the build directory (scripts/package.sh): teleop_<version>_amd64.deb, one
+# package with the executables, the libraries, the headers, the CMake files and the data.
+set(CPACK_PACKAGE_NAME teleop)
+set(CPACK_PACKAGE_VENDOR "teleop")
+set(CPACK_PACKAGE_CONTACT "teleop maintainers <teleop@localhost>")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "${PROJECT_DESCRIPTION}")
+# one string: two would join as a list, with a ';' in the package's description
+set(CPACK_PACKAGE_DESCRIPTION "Leader, follower, digital twin and hand nodes over Fast DDS, with network \
+impairment emulation, experiments and the bus tools; libraries and CMake files to build against it.")
+set(CPACK_RESOURCE_FILE_LICENSE ${PROJECT_SOURCE_DIR}/LICENSE)
+# Debian's own prefix: /usr/bin, /usr/lib (on the loader's default path), /usr/share/teleop
+set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
+set(CPACK_STRIP_FILES ON)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_SECTION science)
+# the libraries' dependencies (libfastrtps, libmujoco, libyaml-cpp, ...) read from the binaries
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)
+# what dpkg-shlibdeps cannot see: `teleop plot` and the experiments' figures run python3 with
+# matplotlib (scripts/teleop_plot); building against the installed CMake package needs the
+# headers its public interface includes (and libqhull-dev, whose include folder Debian's mujoco
+# config names without depending on it; libcli11-dev: teleop::runtime's public header includes CLI11); fastdds-tools has the discovery server, can-utils
+# candump/cansend for the hand's bus
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3, python3-matplotlib")
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS
+    "libfastrtps-dev, libfastcdr-dev, libyaml-cpp-dev, libeigen3-dev, libmujoco-dev, libqhull-dev, libcli11-dev, fastdds-tools, can-utils")
+include(CPack)

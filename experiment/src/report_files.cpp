@@ -1,0 +1,28 @@
+#include "report_files.h"
+
+#include <stdlib.h>
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+namespace teleop::experiment {
+
+std::string make_report_dir(const std::string& requested, const std::string& prefix) {
+  namespace fs = std::filesystem;
+  if (!requested.empty()) {
+    fs::create_directories(requested);
+    return requested;
+  }
+  std::string pattern = (fs::temp_directory_path() / (prefix + "XXXXXX")).string();
+  if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("cannot create a report directory in /tmp");
+  return pattern;
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out.flush()) throw std::runtime_error("cannot write " + path);
+}
+
+}  // namespace teleop::experiment

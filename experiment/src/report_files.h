@@ -1,0 +1,16 @@
+#pragma once
+// Where a study leaves its results: a report folder (the one asked for, or a new one in /tmp) and
+// whole text files written into it. Shared by the experiment, the soak and the hand study.
+
+#include <string>
+
+namespace teleop::experiment {
+
+/// `requested` (created with its parents) or, when empty, a new folder
+/// <temp>/<prefix>XXXXXX. Throws std::runtime_error when it cannot be made.
+std::string make_report_dir(const std::string& requested, const std::string& prefix);
+
+/// Writes `text` to `path`, replacing it. Throws std::runtime_error naming the path on failure.
+void write_text(const std::string& path, const std::string& text);
+
+}  // namespace teleop::experiment
