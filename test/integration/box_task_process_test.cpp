@@ -29,7 +29,9 @@ TEST(BoxTaskProcesses, TheOperatorsSqueezeLiftsTheBoxClearOfItsSocketUnderPfcAnd
   const size_t top = static_cast<size_t>(std::max_element(box_z.begin(), box_z.end()) - box_z.begin());
   RecordProperty("box_z_max_m", std::to_string(box_z[top]));
   // the box (0.2 m) rests with its centre at 0.80 m; its bottom clears the 6 cm socket walls at 0.86 m
-  EXPECT_GT(box_z[top], 0.86) << "lifted clear of the socket";
+  // a failure shows the run's log and the follower's report (a stray writer, a safe hold, overruns)
+  EXPECT_GT(box_z[top], 0.86) << "lifted clear of the socket\n"
+                              << r.output << read_file(dir + "/pfc/wan-35ms/follower.yaml");
   // held by friction alone: each hand squeezes at least m g / (2 mu) = 6.1 N, nothing else supports it
   EXPECT_GT(follower.column("left_squeeze_n")[top], 6.1);
   EXPECT_GT(follower.column("right_squeeze_n")[top], 6.1);

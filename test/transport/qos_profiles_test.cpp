@@ -101,8 +101,9 @@ void expect_presets_reproduced(Participant& p) {
     expect_same_endpoint(p.endpoint_qos().reader(preset), reader_qos(preset, defaults), reader_profile_name(preset));
   }
   // the participant as created, not only its profile
-  const auto& created = p.dds()->get_qos().wire_protocol().builtin.discovery_config;
-  const auto& code = participant_qos_preset(defaults).wire_protocol().builtin.discovery_config;
+  // copies: the preset is a temporary, a reference into it dangles (ASan: stack-use-after-scope)
+  const auto created = p.dds()->get_qos().wire_protocol().builtin.discovery_config;
+  const auto code = participant_qos_preset(defaults).wire_protocol().builtin.discovery_config;
   EXPECT_EQ(created.leaseDuration, code.leaseDuration);
   EXPECT_EQ(created.leaseDuration_announcementperiod, code.leaseDuration_announcementperiod);
 }
@@ -134,7 +135,7 @@ TEST(QosProfiles, YamlKeysOverrideTheProfiles) {
   }
   EXPECT_EQ(ns_of(p.endpoint_qos().writer(QosPreset::kStream).deadline().period), 2'000'000);
   EXPECT_EQ(ns_of(p.endpoint_qos().reader(QosPreset::kStream).deadline().period), 2'000'000);
-  const auto& discovery = p.dds()->get_qos().wire_protocol().builtin.discovery_config;
+  const auto discovery = p.dds()->get_qos().wire_protocol().builtin.discovery_config;
   EXPECT_EQ(ns_of(discovery.leaseDuration), 6'000'000'000);
   EXPECT_EQ(ns_of(discovery.leaseDuration_announcementperiod), 2'000'000'000);
 }

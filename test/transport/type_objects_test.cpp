@@ -1,7 +1,7 @@
 // The types are built with XTypes type objects (fastddsgen -typeobject): a participant registers
-// them, writers announce them in discovery, they describe the bytes on the wire (a dynamic type
-// built from them reads a sample), and registering them never makes a sample's construction
-// allocate (the control loop constructs sequence elements).
+// them, writers announce their type information (not the objects) in discovery, the objects
+// describe the bytes on the wire (a dynamic type built from them reads a sample), and registering
+// them never makes a sample's construction allocate (the control loop constructs sequence elements).
 
 #include <fastrtps/types/DynamicData.h>
 #include <fastrtps/types/DynamicDataFactory.h>
@@ -96,7 +96,9 @@ TEST(TypeObjects, DescribeTheBytesOnTheWire) {
   eprosima::fastrtps::types::DynamicDataFactory::get_instance()->delete_data(data);
 }
 
-// Hears whether a discovered writer of `topic` announced its type.
+// Hears whether a discovered writer of `topic` announced its type information (the hashes) and
+// whether it sent the type object itself (it must not: Fast DDS 2.9 crashes building a dynamic
+// type from one it does not know, the discovery server among them; participant.cpp).
 class TypeAnnouncements : public dds::DomainParticipantListener {
  public:
   explicit TypeAnnouncements(std::string topic) : topic_(std::move(topic)) {}
@@ -104,15 +106,17 @@ class TypeAnnouncements : public dds::DomainParticipantListener {
     if (info.info.topicName().to_string() != topic_) return;
     seen = true;
     announced = info.info.has_type_information() && info.info.type_information().assigned();
+    object_sent = info.info.has_type() && info.info.type().m_type_object._d() != 0;
   }
   std::atomic<bool> seen{false};
   std::atomic<bool> announced{false};
+  std::atomic<bool> object_sent{false};
 
  private:
   std::string topic_;
 };
 
-TEST(TypeObjects, WritersAnnounceTheirTypeInDiscovery) {
+TEST(TypeObjects, WritersAnnounceTheirTypeInformationButNotTheTypeObjectInDiscovery) {
   const std::string topic = test_bus::topic_name("typed");
   TypeAnnouncements announcements(topic);
   auto* factory = dds::DomainParticipantFactory::get_instance();
@@ -125,6 +129,7 @@ TEST(TypeObjects, WritersAnnounceTheirTypeInDiscovery) {
     EXPECT_TRUE(writer.valid());
     EXPECT_TRUE(wait_for([&] { return announcements.seen.load(); }));
     EXPECT_TRUE(announcements.announced.load());
+    EXPECT_FALSE(announcements.object_sent.load());
   }
   factory->delete_participant(observer);
 }
