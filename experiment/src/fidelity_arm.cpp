@@ -26,8 +26,8 @@ std::unique_ptr<control::Controller> make_controller(const FidelityStudyConfig& 
 
 }  // namespace
 
-FidelityArm::FidelityArm(const FidelityStudyConfig& config, const std::string& model_path, FidelityController controller,
-                         std::optional<uint64_t> real_seed)
+FidelityArm::FidelityArm(const FidelityStudyConfig& config, const std::string& model_path,
+                         FidelityController controller, std::optional<uint64_t> real_seed)
     : plant_(sim::MujocoModel::load(model_path)),
       nominal_(sim::MujocoModel::load(model_path)),
       joints_(arm_joints(plant_)),
@@ -101,7 +101,8 @@ int FidelityArm::mujoco_warnings() const {
 ForwardKinematics::ForwardKinematics(const std::string& model_path, const std::string& ee_site)
     : model_(sim::MujocoModel::load(model_path)), joints_(arm_joints(model_)), site_(model_.site_id(ee_site)) {}
 
-void ForwardKinematics::pose(const control::JointVector& q_rad, std::array<double, 3>& position_m, Quaternion& rotation) {
+void ForwardKinematics::pose(const control::JointVector& q_rad, std::array<double, 3>& position_m,
+                             Quaternion& rotation) {
   const mjModel* m = model_.model();
   mjData* d = model_.data();
   for (size_t i = 0; i < joints_.count; ++i) d->qpos[joints_.qpos[i]] = q_rad[static_cast<int>(i)];

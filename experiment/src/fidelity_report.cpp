@@ -102,7 +102,8 @@ std::vector<const FidelityRun*> table_runs(const std::vector<FidelityRun>& runs,
 using CellValue = double (*)(const FidelityCell&);
 
 // a table in the thesis's shape: per row our spread over the seeds, then the thesis's value
-std::string paper_table(const std::vector<FidelityRun>& runs, const std::vector<std::pair<const ThesisRow*, CellValue>>& rows) {
+std::string paper_table(const std::vector<FidelityRun>& runs,
+                        const std::vector<std::pair<const ThesisRow*, CellValue>>& rows) {
   std::string out = "| |";
   std::string rule = "|---|";
   for (const char* title : kColumnTitles) {
@@ -151,9 +152,9 @@ std::string real_time_table(const std::vector<FidelityRun>& runs) {
            format("%.1f", *hi) + ")";
   };
   return "| | ours: replay (lock-step, in process) | thesis: Gazebo + Simulink (lock-step) |\n|---|---|---|\n"
-         "| free motion | " + cell(free) + " | " + format("%.2f", kThesisRtfFree) +
-         " |\n| in contact | " + cell(contact) + " | " + format("%.2f", kThesisRtfContact) + " (wiping across: " +
-         format("%.2f", kThesisRtfWiping) + ") |\n";
+         "| free motion | " +
+         cell(free) + " | " + format("%.2f", kThesisRtfFree) + " |\n| in contact | " + cell(contact) + " | " +
+         format("%.2f", kThesisRtfContact) + " (wiping across: " + format("%.2f", kThesisRtfWiping) + ") |\n";
 }
 
 std::string segments_table(const std::vector<FidelityRun>& runs, bool contact, uint64_t seed) {
@@ -164,13 +165,13 @@ std::string segments_table(const std::vector<FidelityRun>& runs, bool contact, u
   for (const FidelityRun& r : runs) {
     if (r.contact != contact || r.seed != seed) continue;
     for (const FidelitySegment& g : r.segments) {
-      out += std::string("| ") + controller_name(r.controller) + " | " + g.name + " | " + format("%.4f", g.q_rmse_deg.mean) +
-             " | " + format("%.4f", g.q_rmse_deg.sd) + " | " + format("%.4f", g.q_rmse_deg.max) + " | " +
-             format("%.4f", g.q_max_joint_deg) + " | " + format("%.3f", g.tau_rmse_nm.mean) + " | " +
-             format("%.3f", g.tau_rmse_nm.sd) + " | " + format("%.3f", g.tau_rmse_nm.max) + " | " +
-             format("%.3f", g.tau_max_joint_nm) + " | " + format("%.4f", g.ee_position_cm.mean) + " | " +
-             format("%.4f", g.ee_position_cm.max) + " | " + format("%.2e", g.ee_rotation.mean) + " | " +
-             format("%.2e", g.ee_rotation.max) + " |\n";
+      out += std::string("| ") + controller_name(r.controller) + " | " + g.name + " | " +
+             format("%.4f", g.q_rmse_deg.mean) + " | " + format("%.4f", g.q_rmse_deg.sd) + " | " +
+             format("%.4f", g.q_rmse_deg.max) + " | " + format("%.4f", g.q_max_joint_deg) + " | " +
+             format("%.3f", g.tau_rmse_nm.mean) + " | " + format("%.3f", g.tau_rmse_nm.sd) + " | " +
+             format("%.3f", g.tau_rmse_nm.max) + " | " + format("%.3f", g.tau_max_joint_nm) + " | " +
+             format("%.4f", g.ee_position_cm.mean) + " | " + format("%.4f", g.ee_position_cm.max) + " | " +
+             format("%.2e", g.ee_rotation.mean) + " | " + format("%.2e", g.ee_rotation.max) + " |\n";
     }
   }
   return out;
@@ -178,8 +179,8 @@ std::string segments_table(const std::vector<FidelityRun>& runs, bool contact, u
 
 std::string robots_table(const std::vector<FidelityRun>& runs) {
   std::string out =
-      "| seed | link mass [kg] (nominal 16.06) | mass factors | friction factors | damping added [N m s/rad] | "
-      "armature factors |\n|---|---|---|---|---|---|\n";
+      "| seed | links' mass [kg] | mass factors | friction factors | damping added [N m s/rad] | armature factors "
+      "|\n|---|---|---|---|---|---|\n";
   const auto list = [](const std::vector<double>& v, const char* spec) {
     std::string s;
     for (const double x : v) s += (s.empty() ? "" : ", ") + format(spec, x);
@@ -190,9 +191,10 @@ std::string robots_table(const std::vector<FidelityRun>& runs) {
     if (std::find(done.begin(), done.end(), r.seed) != done.end()) continue;
     done.push_back(r.seed);
     const sim::AppliedPerturbation& p = r.perturbation;
-    out += "| " + std::to_string(r.seed) + " | " + format("%.2f", p.perturbed_mass_kg) + " | " +
-           list(p.mass_factor, "%.3f") + " | " + list(p.friction_factor, "%.2f") + " | " +
-           list(p.damping_nms_per_rad, "%.2f") + " | " + list(p.armature_factor, "%.2f") + " |\n";
+    out += "| " + std::to_string(r.seed) + " | " + format("%.2f", p.perturbed_mass_kg) + " (model " +
+           format("%.2f", p.nominal_mass_kg) + ") | " + list(p.mass_factor, "%.3f") + " | " +
+           list(p.friction_factor, "%.2f") + " | " + list(p.damping_nms_per_rad, "%.2f") + " | " +
+           list(p.armature_factor, "%.2f") + " |\n";
   }
   return out;
 }
@@ -209,11 +211,11 @@ std::string segments_csv(const std::vector<FidelityRun>& runs) {
   for (const FidelityRun& r : runs) {
     for (const FidelitySegment& g : r.segments) {
       out += r.sequence + "," + (r.contact ? "yes" : "no") + "," + controller_name(r.controller) + "," +
-             std::to_string(r.seed) + "," + g.name + "," + (g.movement ? "movement" : "pose") + "," + format("%.3f", g.window.begin_s) + "," +
-             format("%.3f", g.window.end_s) + "," + summary_fields(g.q_rmse_deg) + "," +
-             format("%.6g", g.q_max_joint_deg) + "," + summary_fields(g.tau_rmse_nm) + "," +
-             format("%.6g", g.tau_max_joint_nm) + "," + summary_fields(g.ee_position_cm) + "," +
-             summary_fields(g.ee_rotation) + "\n";
+             std::to_string(r.seed) + "," + g.name + "," + (g.movement ? "movement" : "pose") + "," +
+             format("%.3f", g.window.begin_s) + "," + format("%.3f", g.window.end_s) + "," +
+             summary_fields(g.q_rmse_deg) + "," + format("%.6g", g.q_max_joint_deg) + "," +
+             summary_fields(g.tau_rmse_nm) + "," + format("%.6g", g.tau_max_joint_nm) + "," +
+             summary_fields(g.ee_position_cm) + "," + summary_fields(g.ee_rotation) + "\n";
     }
   }
   return out;
@@ -225,8 +227,8 @@ std::string runs_csv(const std::vector<FidelityRun>& runs) {
       "link_mass_kg,nominal_link_mass_kg\n";
   for (const FidelityRun& r : runs) {
     out += r.sequence + "," + controller_name(r.controller) + "," + std::to_string(r.seed) + "," +
-           (r.contact ? "yes" : "no") + "," + format("%.0f", r.free_steps + r.contact_steps) + "," +
-           format("%.0f", r.contact_steps) + "," + format("%.4g", r.rt_factor_free) + "," +
+           (r.contact ? "yes" : "no") + "," + std::to_string(r.free_steps + r.contact_steps) + "," +
+           std::to_string(r.contact_steps) + "," + format("%.4g", r.rt_factor_free) + "," +
            format("%.4g", r.rt_factor_contact) + "," + std::to_string(r.mujoco_warnings) + "," +
            format("%.6f", r.perturbation.perturbed_mass_kg) + "," + format("%.6f", r.perturbation.nominal_mass_kg) +
            "\n";
@@ -265,15 +267,17 @@ std::string format_fidelity_markdown(const FidelityStudyConfig& c, const std::ve
   std::string seed_text;
   for (const uint64_t s : seeds) seed_text += (seed_text.empty() ? "" : ", ") + std::to_string(s);
   std::string out = "# Fidelity study: " + c.name + "\n\n";
-  out += "A \"real\" Panda-class arm (the nominal model with link masses ±" + format("%g", 100 * c.perturbation.mass_fraction) +
-         " %, centres of mass ±" + format("%g", 100 * c.perturbation.com_offset_m) + " cm, dry friction ±" +
+  out += "A \"real\" Panda-class arm (the nominal model with link masses ±" +
+         format("%g", 100 * c.perturbation.mass_fraction) + " %, centres of mass ±" +
+         format("%g", 100 * c.perturbation.com_offset_m) + " cm, dry friction ±" +
          format("%g", 100 * c.perturbation.friction_fraction) + " %, viscous damping 0–" +
          format("%g", c.perturbation.damping_max_nms_per_rad) + " N m s/rad, rotor inertia ±" +
-         format("%g", 100 * c.perturbation.armature_fraction) + " %; sensor noise σ " + format("%g", c.sensor_noise.q_rad) +
-         " rad, " + format("%g", c.sensor_noise.dq_radps) + " rad/s, " + format("%g", c.sensor_noise.tau_nm) +
+         format("%g", 100 * c.perturbation.armature_fraction) + " %; sensor noise σ " +
+         format("%g", c.sensor_noise.q_rad) + " rad, " + format("%g", c.sensor_noise.dq_radps) + " rad/s, " +
+         format("%g", c.sensor_noise.tau_nm) +
          " N m) runs each controller through the poses; its commands are replayed in lock-step into the nominal "
-         "model, the same controller code driving both. Minimum-jerk movements of " + format("%g", c.move_s) +
-         " s, " + format("%g", c.hold_s) + " s at each pose; a pose's metrics over the last " +
+         "model, the same controller code driving both. Minimum-jerk movements of " +
+         format("%g", c.move_s) + " s, " + format("%g", c.hold_s) + " s at each pose; a pose's metrics over the last " +
          format("%g", c.pose_window_s) + " s of its hold, a movement's from " + format("%g", c.movement_before_s) +
          " s before to " + format("%g", c.movement_after_s) +
          " s after it. Ours: the mean over the \"real\" robots of seeds " + seed_text +
@@ -304,8 +308,7 @@ std::string format_fidelity_markdown(const FidelityStudyConfig& c, const std::ve
       {&kEndEffector[3], [](const FidelityCell& x) { return x.ee_rotation.max; }},
   };
   out += "\n## End effector (§4.3.2): position error in cm (eq. 4.4), rotation distance θ (eq. 4.5)\n\n" +
-         paper_table(runs, end_effector) +
-         "\nθ of a 1° rotation is 0.0247. Thesis: \"–\" where it gives no number.\n";
+         paper_table(runs, end_effector) + "\nθ of a 1° rotation is 0.0247. Thesis: \"–\" where it gives no number.\n";
   out += "\n## Real-time factor (§4.5): simulated over computing time\n\n" + real_time_table(runs);
   out += "\n## Per pose and movement, seed " + std::to_string(seeds.front()) + "\n\n" +
          segments_table(runs, false, seeds.front());
@@ -328,9 +331,8 @@ FidelityStudyResult run_fidelity_study(const FidelityStudyConfig& config, const 
   const std::vector<uint64_t>& seeds = options.seeds.empty() ? config.seeds : options.seeds;
   FidelityStudyResult result;
   for (const FidelitySequence& sequence : config.sequences) {
-    const bool chosen = options.sequences.empty() ||
-                        std::find(options.sequences.begin(), options.sequences.end(), sequence.name) !=
-                            options.sequences.end();
+    const bool chosen = options.sequences.empty() || std::find(options.sequences.begin(), options.sequences.end(),
+                                                               sequence.name) != options.sequences.end();
     if (!chosen) continue;
     for (const FidelityController controller : {FidelityController::kStateSpace, FidelityController::kJointImpedance}) {
       for (const uint64_t seed : seeds) result.runs.push_back(run_fidelity_case(config, sequence, controller, seed));

@@ -68,7 +68,8 @@ std::vector<FidelitySegment> sequence_segments(const FidelityStudyConfig& c, con
 }
 
 // runs `arm` through `commands` (one lock-step each), keeping the measurements and timing each step
-FidelityTrajectory drive(FidelityArm& arm, const control::JointVector& start, const std::vector<RecordedCommand>& commands) {
+FidelityTrajectory drive(FidelityArm& arm, const control::JointVector& start,
+                         const std::vector<RecordedCommand>& commands) {
   FidelityTrajectory out;
   out.q_rad.reserve(commands.size());
   out.dq_radps.reserve(commands.size());
@@ -157,14 +158,14 @@ FidelityRun run_fidelity_case(const FidelityStudyConfig& c, const FidelitySequen
   run.perturbation = real.perturbation;
   run.mujoco_warnings = real.mujoco_warnings + twin.mujoco_warnings;
   const double dt = twin.timestep_s;
-  const double free_steps = static_cast<double>(commands.size() - twin.contact_steps);
-  const double contact_steps = static_cast<double>(twin.contact_steps);
+  run.free_steps = commands.size() - twin.contact_steps;
+  run.contact_steps = twin.contact_steps;
   const double free_computing_s = twin.computing_s - twin.contact_computing_s;
-  run.free_steps = free_steps;
-  run.contact_steps = contact_steps;
-  run.rt_factor_free = free_steps > 0 && free_computing_s > 0 ? free_steps * dt / free_computing_s : kNaN;
-  run.rt_factor_contact =
-      contact_steps > 0 && twin.contact_computing_s > 0 ? contact_steps * dt / twin.contact_computing_s : kNaN;
+  const auto rt_factor = [dt](size_t steps, double computing_s) {
+    return steps > 0 && computing_s > 0 ? static_cast<double>(steps) * dt / computing_s : kNaN;
+  };
+  run.rt_factor_free = rt_factor(run.free_steps, free_computing_s);
+  run.rt_factor_contact = rt_factor(run.contact_steps, twin.contact_computing_s);
 
   // the thesis's metrics at every step: joints in degrees, torques in N m, the end effector by
   // the nominal forward kinematics of each run's measured joints (its "forward kinematics
@@ -183,7 +184,8 @@ FidelityRun run_fidelity_case(const FidelityStudyConfig& c, const FidelitySequen
   Quaternion r_twin{};
   for (size_t k = 0; k < n; ++k) {
     sig.t_s.push_back(static_cast<double>(k + 1) * dt);
-    for (int i = 0; i < control::kDof; ++i) e[static_cast<size_t>(i)] = (real.q_rad[k][i] - twin.q_rad[k][i]) * kDegPerRad;
+    for (int i = 0; i < control::kDof; ++i)
+      e[static_cast<size_t>(i)] = (real.q_rad[k][i] - twin.q_rad[k][i]) * kDegPerRad;
     sig.q_rmse_deg.push_back(rmse(e));
     sig.q_max_joint_deg.push_back(max_abs(e));
     for (int i = 0; i < control::kDof; ++i) e[static_cast<size_t>(i)] = real.tau_nm[k][i] - twin.tau_nm[k][i];

@@ -88,18 +88,10 @@ FidelityStudyConfig load_fidelity_study(const std::string& path) {
   const ConfigNode impedance = controllers.child("joint_impedance");
   c.joint_impedance.stiffness = joint_vector(impedance, "stiffness", Range{0, 1e5});
   c.joint_impedance.damping = joint_vector(impedance, "damping", Range{0, 1e4});
+  // the robots' seeds are the study's `seeds`
   const ConfigNode real = s.child("real_robot");
-  const ConfigNode perturbation = real.child("perturbation");
-  sim::PerturbationSpec& p = c.perturbation;
-  p.mass_fraction = perturbation.get_double("mass_fraction", Range{0, 0.9});
-  p.com_offset_m = perturbation.get_double("com_offset_m", Range{0, 0.1});
-  p.friction_fraction = perturbation.get_double("friction_fraction", Range{0, 1});
-  p.damping_max_nms_per_rad = perturbation.get_double("damping_max_nms_per_rad", Range{0, 100});
-  p.armature_fraction = perturbation.get_double("armature_fraction", Range{0, 0.9});
-  const ConfigNode noise = real.child("sensor_noise");
-  c.sensor_noise.q_rad = noise.get_double("q_rad", Range{0, 0.1});
-  c.sensor_noise.dq_radps = noise.get_double("dq_radps", Range{0, 10});
-  c.sensor_noise.tau_nm = noise.get_double("tau_nm", Range{0, 100});
+  c.perturbation = sim::read_perturbation(real.child("perturbation"));
+  c.sensor_noise = sim::read_sensor_noise(real.child("sensor_noise"));
   names.clear();
   for (const ConfigNode& q : s.get_node_list("sequences")) {
     FidelitySequence sequence;

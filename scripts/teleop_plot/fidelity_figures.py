@@ -70,7 +70,8 @@ def movement_grid(signals, segments, sequence, seed, key, peak_key, unit, title)
             if data is None:
                 continue
             t, v = window(data, key, begin, end)
-            ax.plot(t, v, color=COLOURS[controller], linewidth=1.1, label=f"{LABELS[controller]}: RMSE")
+            label = f"{LABELS[controller]}: RMSE" if peak_key else LABELS[controller]
+            ax.plot(t, v, color=COLOURS[controller], linewidth=1.1, label=label)
             if peak_key:
                 t, v = window(data, peak_key, begin, end)
                 ax.plot(t, v, color=COLOURS[controller], linewidth=0.8, linestyle="--",
@@ -125,13 +126,13 @@ def fidelity_figures(trace_path, segments_path):
             continue
         figures += [
             (f"fidelity_{sequence}_joint_error",
-             movement_grid(signals, segments, sequence, seed, "q_rmse_deg", "q_max_joint_deg", "°",
+             movement_grid(signals, segments, sequence, seed, "q_rmse_deg", "q_max_joint_deg", "error [°]",
                            f"Joint position error per movement, seed {seed} (thesis Fig. 4.4)")),
             (f"fidelity_{sequence}_torque_error",
-             movement_grid(signals, segments, sequence, seed, "tau_rmse_nm", "tau_max_joint_nm", "N m",
+             movement_grid(signals, segments, sequence, seed, "tau_rmse_nm", "tau_max_joint_nm", "error [N m]",
                            f"Joint torque error per movement, seed {seed}")),
             (f"fidelity_{sequence}_ee_position_error",
-             movement_grid(signals, segments, sequence, seed, "ee_position_cm", None, "cm",
+             movement_grid(signals, segments, sequence, seed, "ee_position_cm", None, "error [cm]",
                            f"End-effector position error per movement, seed {seed}")),
             (f"fidelity_{sequence}_ee_rotation_error",
              movement_grid(signals, segments, sequence, seed, "ee_rotation", None, "θ (eq. 4.5)",

@@ -71,4 +71,30 @@ AppliedPerturbation perturb_plant(mjModel* m, mjData* d, const ActuatedJoints& j
   return out;
 }
 
+PerturbationSpec read_perturbation(const ConfigNode& p) {
+  PerturbationSpec s;
+  s.mass_fraction = p.get_double("mass_fraction", Range{0, 0.9}, s.mass_fraction);
+  s.com_offset_m = p.get_double("com_offset_m", Range{0, 0.1}, s.com_offset_m);
+  s.friction_fraction = p.get_double("friction_fraction", Range{0, 1}, s.friction_fraction);
+  s.damping_max_nms_per_rad = p.get_double("damping_max_nms_per_rad", Range{0, 100}, s.damping_max_nms_per_rad);
+  s.armature_fraction = p.get_double("armature_fraction", Range{0, 0.9}, s.armature_fraction);
+  return s;
+}
+
+SensorNoiseSpec read_sensor_noise(const ConfigNode& n) {
+  SensorNoiseSpec s;
+  s.q_rad = n.get_double("q_rad", Range{0, 0.1}, s.q_rad);
+  s.dq_radps = n.get_double("dq_radps", Range{0, 10}, s.dq_radps);
+  s.tau_nm = n.get_double("tau_nm", Range{0, 100}, s.tau_nm);
+  return s;
+}
+
+RealRobotSpec read_real_robot(const ConfigNode& real_robot) {
+  RealRobotSpec r;
+  r.seed = static_cast<uint64_t>(real_robot.get_int("seed", Range{0, 9007199254740992.0}, 0));
+  if (const auto p = real_robot.optional_child("perturbation")) r.perturbation = read_perturbation(*p);
+  if (const auto n = real_robot.optional_child("sensor_noise")) r.sensor_noise = read_sensor_noise(*n);
+  return r;
+}
+
 }  // namespace teleop::sim

@@ -175,7 +175,7 @@ TEST(FidelityRun, ThePerturbedRobotStaysCloseToItsTwinButNotEqualPerPoseAndMovem
       EXPECT_GT(g.ee_rotation.mean, 0.0);
       EXPECT_LT(g.ee_rotation.max, 0.1);
     }
-    EXPECT_GT(run.rt_factor_free, 1.0);  // in process: faster than real time on any machine here
+    EXPECT_GT(run.rt_factor_free, 1.0);              // in process: faster than real time on any machine here
     EXPECT_TRUE(std::isnan(run.rt_factor_contact));  // panda.xml has nothing to touch
     // poses: the mean of the two poses' means, the larger of them; movements: the peak sample
     const FidelityCell poses = aggregate(run, false);
@@ -190,7 +190,7 @@ TEST(FidelityRun, TheWallSequenceTouchesAndTimesItsContactSteps) {
   const FidelitySequence& wall = c.sequences.at(1);
   const FidelityRun run = run_fidelity_case(c, wall, FidelityController::kJointImpedance, 1);
   EXPECT_EQ(run.mujoco_warnings, 0);
-  EXPECT_GT(run.contact_steps, 100.0);
+  EXPECT_GT(run.contact_steps, 100u);
   EXPECT_GT(run.rt_factor_contact, 1.0);
 }
 

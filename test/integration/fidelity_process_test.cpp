@@ -41,8 +41,8 @@ std::string tables_of(const std::string& report) {
 TEST(FidelityStudyProcess, WritesTheReportBesideTheThesisAndItsFiguresAndRepeatsItsNumbers) {
   const std::string dir = make_temp_dir();
   const std::string study = reduced_study(dir);
-  const ProcessResult first = run_process({bin("teleop"), "fidelity-study", study, "-o", dir + "/one", "--seeds", "1,2"},
-                                          std::chrono::seconds(120));
+  const ProcessResult first = run_process(
+      {bin("teleop"), "fidelity-study", study, "-o", dir + "/one", "--seeds", "1,2"}, std::chrono::seconds(120));
   ASSERT_EQ(first.exit_status, 0) << first.output;
   EXPECT_EQ(first.output.find("warning"), std::string::npos) << first.output;
   for (const std::string name : {"segments.csv", "runs.csv", "trace.csv", "md"}) {
@@ -58,21 +58,22 @@ TEST(FidelityStudyProcess, WritesTheReportBesideTheThesisAndItsFiguresAndRepeats
 
   // the figures: per movement (free space) and the contact sequence's
   std::vector<std::string> figures;
-  for (const std::string name : {"free_joint_error", "free_torque_error", "free_ee_position_error",
-                                 "free_ee_rotation_error", "contact"}) {
+  for (const std::string name :
+       {"free_joint_error", "free_torque_error", "free_ee_position_error", "free_ee_rotation_error", "contact"}) {
     figures.push_back(dir + "/one/fidelity_" + name + ".png");
     EXPECT_NE(first.output.find("wrote " + figures.back()), std::string::npos) << first.output;
   }
-  std::vector<std::string> check = {"/usr/bin/env", experiment::find_plot_tool().python, "-B",
-                                    source("test/integration/png_check.py"), "1200", "800", "10000"};
+  std::vector<std::string> check = {
+      "/usr/bin/env", experiment::find_plot_tool().python, "-B", source("test/integration/png_check.py"), "1200", "800",
+      "10000"};
   check.insert(check.end(), figures.begin(), figures.end());
   const ProcessResult drawn = run_process(check, std::chrono::seconds(60));
   EXPECT_EQ(drawn.exit_status, 0) << drawn.output;
 
   // the same seeds again, no figures: the same tables, digit for digit
-  const ProcessResult second = run_process(
-      {bin("teleop"), "fidelity-study", study, "-o", dir + "/two", "--seeds", "1,2", "--no-plots"},
-      std::chrono::seconds(120));
+  const ProcessResult second =
+      run_process({bin("teleop"), "fidelity-study", study, "-o", dir + "/two", "--seeds", "1,2", "--no-plots"},
+                  std::chrono::seconds(120));
   ASSERT_EQ(second.exit_status, 0) << second.output;
   const std::string tables = tables_of(report);
   EXPECT_FALSE(tables.empty()) << report;
@@ -82,9 +83,9 @@ TEST(FidelityStudyProcess, WritesTheReportBesideTheThesisAndItsFiguresAndRepeats
 
 TEST(FidelityStudyProcess, AnUnknownSequenceIsAnErrorNamingIt) {
   const std::string dir = make_temp_dir();
-  const ProcessResult r = run_process(
-      {bin("teleop"), "fidelity-study", reduced_study(dir), "-o", dir + "/out", "--sequences", "nowhere"},
-      std::chrono::seconds(60));
+  const ProcessResult r =
+      run_process({bin("teleop"), "fidelity-study", reduced_study(dir), "-o", dir + "/out", "--sequences", "nowhere"},
+                  std::chrono::seconds(60));
   EXPECT_EQ(r.exit_status, 1) << r.output;
   EXPECT_NE(r.output.find("no sequence 'nowhere'"), std::string::npos) << r.output;
 }

@@ -70,10 +70,10 @@ struct FidelitySegment {
   std::string name;  ///< "ready" or "zero_to_ready"
   bool movement = false;
   Window window;
-  Summary q_rmse_deg;        ///< eq. 4.2 over the joints, per sample
-  Summary tau_rmse_nm;       ///< eq. 4.2 on the measured link-side torques
-  Summary ee_position_cm;    ///< eq. 4.4
-  Summary ee_rotation;       ///< eq. 4.5 (dimensionless)
+  Summary q_rmse_deg;      ///< eq. 4.2 over the joints, per sample
+  Summary tau_rmse_nm;     ///< eq. 4.2 on the measured link-side torques
+  Summary ee_position_cm;  ///< eq. 4.4
+  Summary ee_rotation;     ///< eq. 4.5 (dimensionless)
   /// The largest single-joint |error|: of a movement at any sample of its window; of a pose
   /// averaged over its window first (thesis §4.2.2: "averaged over five hundred samples").
   double q_max_joint_deg = 0.0;
@@ -104,8 +104,8 @@ struct FidelityRun {
   /// contact in the simulation (NaN where there were none) [-].
   double rt_factor_free = 0.0;
   double rt_factor_contact = 0.0;
-  double free_steps = 0.0;
-  double contact_steps = 0.0;
+  size_t free_steps = 0;
+  size_t contact_steps = 0;
   int mujoco_warnings = 0;  ///< of both simulations
 };
 
@@ -163,8 +163,8 @@ struct FidelityCell {
 FidelityCell aggregate(const FidelityRun& run, bool movements);
 
 struct FidelityStudyOptions {
-  std::string out_dir;          ///< CSVs, Markdown and figures; default: a new folder in /tmp
-  std::vector<uint64_t> seeds;  ///< instead of the file's
+  std::string out_dir;                 ///< CSVs, Markdown and figures; default: a new folder in /tmp
+  std::vector<uint64_t> seeds;         ///< instead of the file's
   std::vector<std::string> sequences;  ///< only these (empty: all)
   bool plots = true;
 };

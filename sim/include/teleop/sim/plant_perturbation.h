@@ -13,6 +13,7 @@
 #include <random>
 #include <vector>
 
+#include "teleop/common/config.h"
 #include "teleop/sim/actuated_joints.h"
 
 namespace teleop::sim {
@@ -90,6 +91,24 @@ class SensorNoise {
   SensorNoiseSpec spec_;
   SeededRandom random_;
 };
+
+/// A "real" robot: how far it is from its model, how noisy its sensors are, and the seed that
+/// draws both (the robot: derived_seed(seed, 0); the sensors: derived_seed(seed, 1), ...).
+struct RealRobotSpec {
+  uint64_t seed = 0;
+  PerturbationSpec perturbation;
+  SensorNoiseSpec sensor_noise;
+};
+
+/// Reads a `perturbation:` section (mass_fraction, com_offset_m, friction_fraction,
+/// damping_max_nms_per_rad, armature_fraction), each key optional with the default above.
+/// Throws ConfigError naming the file and key for a value out of range. Setup time.
+PerturbationSpec read_perturbation(const ConfigNode& perturbation);
+/// Reads a `sensor_noise:` section (q_rad, dq_radps, tau_nm), as read_perturbation().
+SensorNoiseSpec read_sensor_noise(const ConfigNode& sensor_noise);
+/// Reads a `real_robot:` section: `seed` (default 0), `perturbation:`, `sensor_noise:` (each
+/// optional). Setup time.
+RealRobotSpec read_real_robot(const ConfigNode& real_robot);
 
 /// A seed of its own for each use of one run seed (`stream` 0: the robot, 1: its sensors, ...),
 /// so that changing one use does not shift the draws of another (splitmix64).
