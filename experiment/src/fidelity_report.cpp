@@ -60,6 +60,9 @@ std::string format(const char* spec, double v) {
   return buf;
 }
 
+// a CSV cell: NaN as "nan" (what a CSV reader parses), not the tables' dash
+std::string csv_number(const char* spec, double v) { return std::isnan(v) ? std::string("nan") : format(spec, v); }
+
 // ours: three significant digits; the thesis's: as printed (up to five)
 std::string sig3(double v) { return format("%.3g", v); }
 std::string thesis_text(double v) { return format("%.5g", v); }
@@ -200,7 +203,7 @@ std::string robots_table(const std::vector<FidelityRun>& runs) {
 }
 
 std::string summary_fields(const Summary& s) {
-  return format("%.6g", s.mean) + "," + format("%.6g", s.sd) + "," + format("%.6g", s.max);
+  return csv_number("%.6g", s.mean) + "," + csv_number("%.6g", s.sd) + "," + csv_number("%.6g", s.max);
 }
 
 std::string segments_csv(const std::vector<FidelityRun>& runs) {
@@ -212,9 +215,9 @@ std::string segments_csv(const std::vector<FidelityRun>& runs) {
     for (const FidelitySegment& g : r.segments) {
       out += r.sequence + "," + (r.contact ? "yes" : "no") + "," + controller_name(r.controller) + "," +
              std::to_string(r.seed) + "," + g.name + "," + (g.movement ? "movement" : "pose") + "," +
-             format("%.3f", g.window.begin_s) + "," + format("%.3f", g.window.end_s) + "," +
-             summary_fields(g.q_rmse_deg) + "," + format("%.6g", g.q_max_joint_deg) + "," +
-             summary_fields(g.tau_rmse_nm) + "," + format("%.6g", g.tau_max_joint_nm) + "," +
+             csv_number("%.3f", g.window.begin_s) + "," + csv_number("%.3f", g.window.end_s) + "," +
+             summary_fields(g.q_rmse_deg) + "," + csv_number("%.6g", g.q_max_joint_deg) + "," +
+             summary_fields(g.tau_rmse_nm) + "," + csv_number("%.6g", g.tau_max_joint_nm) + "," +
              summary_fields(g.ee_position_cm) + "," + summary_fields(g.ee_rotation) + "\n";
     }
   }
@@ -228,9 +231,9 @@ std::string runs_csv(const std::vector<FidelityRun>& runs) {
   for (const FidelityRun& r : runs) {
     out += r.sequence + "," + controller_name(r.controller) + "," + std::to_string(r.seed) + "," +
            (r.contact ? "yes" : "no") + "," + std::to_string(r.free_steps + r.contact_steps) + "," +
-           std::to_string(r.contact_steps) + "," + format("%.4g", r.rt_factor_free) + "," +
-           format("%.4g", r.rt_factor_contact) + "," + std::to_string(r.mujoco_warnings) + "," +
-           format("%.6f", r.perturbation.perturbed_mass_kg) + "," + format("%.6f", r.perturbation.nominal_mass_kg) +
+           std::to_string(r.contact_steps) + "," + csv_number("%.4g", r.rt_factor_free) + "," +
+           csv_number("%.4g", r.rt_factor_contact) + "," + std::to_string(r.mujoco_warnings) + "," +
+           csv_number("%.6f", r.perturbation.perturbed_mass_kg) + "," + csv_number("%.6f", r.perturbation.nominal_mass_kg) +
            "\n";
   }
   return out;
@@ -247,10 +250,10 @@ std::string trace_csv(const std::vector<FidelityRun>& runs, double period_s) {
     const auto every = std::max<size_t>(1, static_cast<size_t>(std::lround(period_s / (s.t_s[1] - s.t_s[0]))));
     for (size_t k = every - 1; k < s.t_s.size(); k += every) {
       out += r.sequence + "," + controller_name(r.controller) + "," + std::to_string(r.seed) + "," +
-             format("%.3f", s.t_s[k]) + "," + format("%.6g", s.q_rmse_deg[k]) + "," +
-             format("%.6g", s.q_max_joint_deg[k]) + "," + format("%.6g", s.tau_rmse_nm[k]) + "," +
-             format("%.6g", s.tau_max_joint_nm[k]) + "," + format("%.6g", s.ee_position_cm[k]) + "," +
-             format("%.6g", s.ee_rotation[k]) + "\n";
+             csv_number("%.3f", s.t_s[k]) + "," + csv_number("%.6g", s.q_rmse_deg[k]) + "," +
+             csv_number("%.6g", s.q_max_joint_deg[k]) + "," + csv_number("%.6g", s.tau_rmse_nm[k]) + "," +
+             csv_number("%.6g", s.tau_max_joint_nm[k]) + "," + csv_number("%.6g", s.ee_position_cm[k]) + "," +
+             csv_number("%.6g", s.ee_rotation[k]) + "\n";
     }
   }
   return out;
