@@ -233,8 +233,8 @@ std::string runs_csv(const std::vector<FidelityRun>& runs) {
            (r.contact ? "yes" : "no") + "," + std::to_string(r.free_steps + r.contact_steps) + "," +
            std::to_string(r.contact_steps) + "," + csv_number("%.4g", r.rt_factor_free) + "," +
            csv_number("%.4g", r.rt_factor_contact) + "," + std::to_string(r.mujoco_warnings) + "," +
-           csv_number("%.6f", r.perturbation.perturbed_mass_kg) + "," + csv_number("%.6f", r.perturbation.nominal_mass_kg) +
-           "\n";
+           csv_number("%.6f", r.perturbation.perturbed_mass_kg) + "," +
+           csv_number("%.6f", r.perturbation.nominal_mass_kg) + "\n";
   }
   return out;
 }
