@@ -1,7 +1,8 @@
 // teleop: command-line entry point. `teleop launch demo` (a scenario's name or file) runs it, `teleop sweep`
 // one scenario under several network profiles, `teleop experiment` runs x profiles with metrics,
 // `teleop reset NODE` clears a node's latched reflex, `teleop plot RUN_DIR` draws a run's figures,
-// `teleop hand-study STUDY.yaml` reproduces the SVH hand study in MuJoCo (hand_study_command.h);
+// `teleop hand-study STUDY.yaml` reproduces the SVH hand study in MuJoCo (hand_study_command.h),
+// `teleop fidelity-study STUDY.yaml` the coupling thesis's twin accuracy study (fidelity_study_command.h);
 // `teleop topic`, `monitor`, `record`, `replay` (bus_commands.h) look at and keep the bus.
 #include <CLI/CLI.hpp>
 
@@ -20,6 +21,7 @@
 #include "teleop/runtime/command_line_hint.h"
 #include "bus_commands.h"
 #include "config_option.h"
+#include "fidelity_study_command.h"
 #include "hand_study_command.h"
 #include "plot_command.h"
 
@@ -117,6 +119,7 @@ int main(int argc, char** argv) {
   BusCommands bus_commands(app);
   const teleop::cli::PlotCommand plot(app);
   const teleop::cli::HandStudyCommand hand_study(app);
+  const teleop::cli::FidelityStudyCommand fidelity_study(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -126,6 +129,7 @@ int main(int argc, char** argv) {
     if (const auto rc = bus_commands.run()) return *rc;
     if (plot.parsed()) return plot.run();
     if (hand_study.parsed()) return hand_study.run();
+    if (fidelity_study.parsed()) return fidelity_study.run();
     if (reset_cmd->parsed()) {
       if (send_reset(reset_options)) {
         std::printf("reset sent to %s and acknowledged\n", reset_options.target.c_str());

@@ -125,4 +125,47 @@ double min_finite(const std::vector<double>& v) {
   return std::isinf(lo) ? kNaN : lo;
 }
 
+double rmse(std::span<const double> errors) {
+  if (errors.empty()) return kNaN;
+  double sum = 0.0;
+  for (const double e : errors) sum += e * e;
+  return std::sqrt(sum / static_cast<double>(errors.size()));
+}
+
+double max_abs(std::span<const double> errors) {
+  if (errors.empty()) return kNaN;
+  double out = 0.0;
+  for (const double e : errors) out = std::max(out, std::abs(e));
+  return out;
+}
+
+double rotation_distance(const Quaternion& q1, const Quaternion& q2) {
+  // for unit quaternions 1 - (q1 . q2)^2 = |q1|^2 |q2|^2 - (q1 . q2)^2, which Lagrange's identity
+  // writes as a sum of squares: 0 for equal (or opposite) quaternions exactly, where 1 - dot^2
+  // would leave the rounding of dot, which the square root turns into ~6e-8
+  double cross_sq = 0.0;
+  for (size_t i = 0; i < 4; ++i) {
+    for (size_t j = i + 1; j < 4; ++j) {
+      const double c = q1[i] * q2[j] - q1[j] * q2[i];
+      cross_sq += c * c;
+    }
+  }
+  return 2.0 * std::sqrt(2.0 * cross_sq);
+}
+
+Summary summarize_in(const std::vector<double>& t, const std::vector<double>& v, Window w) {
+  double sum = 0.0;
+  double hi = -std::numeric_limits<double>::infinity();
+  const size_t n = for_each_in(t, v, w, [&](double x) {
+    sum += x;
+    hi = std::max(hi, x);
+  });
+  if (n == 0) return {kNaN, kNaN, kNaN, 0};
+  const double mean = sum / static_cast<double>(n);
+  // two passes: no cancellation when the spread is small against the mean
+  double sum_sq = 0.0;
+  for_each_in(t, v, w, [&](double x) { sum_sq += (x - mean) * (x - mean); });
+  return {mean, std::sqrt(sum_sq / static_cast<double>(n)), hi, n};
+}
+
 }  // namespace teleop::experiment

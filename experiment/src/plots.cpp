@@ -126,4 +126,9 @@ void plot_hand_study(const PlotTool& tool, const std::string& trace_csv, const s
   run_package(tool, {"hand", trace_csv, out_dir}, trace_csv);
 }
 
+void plot_fidelity_study(const PlotTool& tool, const std::string& trace_csv, const std::string& segments_csv,
+                         const std::string& out_dir) {
+  run_package(tool, {"fidelity", trace_csv, segments_csv, out_dir}, trace_csv);
+}
+
 }  // namespace teleop::experiment

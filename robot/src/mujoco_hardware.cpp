@@ -24,6 +24,10 @@ MujocoHardware::MujocoHardware(std::shared_ptr<MujocoScene> scene, const MujocoH
     throw std::runtime_error(config.model_path + ": no site " + config.ee_site + " for the arm " + config.joint_prefix + "*");
   }
   ee_body_ = site >= 0 ? m->site_bodyid[site] : m->jnt_bodyid[m->actuator_trnid[2 * arm_.actuator[arm_.count - 1]]];
+  if (const auto& real = scene_->real_robot()) {
+    // each arm's sensors a stream of their own, named by the arm's first motor
+    noise_.emplace(real->sensor_noise, sim::derived_seed(real->seed, 1 + static_cast<uint64_t>(arm_.actuator[0])));
+  }
 }
 
 void MujocoHardware::place(const JointVector& q_rad) {
@@ -106,6 +110,13 @@ HardwareStatus MujocoHardware::read(ArmState& state) {
     state.tau_measured_nm[i] = d->actuator_force[arm_.actuator[i]];
     // contacts and joint limits acting on the joint, from the last step
     state.tau_ext_nm[i] = d->qfrc_constraint[arm_.dof[i]];
+  }
+  if (noise_) {
+    for (size_t i = 0; i < arm_.count; ++i) {
+      state.q_rad[i] += noise_->q_rad();
+      state.dq_radps[i] += noise_->dq_radps();
+      state.tau_measured_nm[i] += noise_->tau_nm();
+    }
   }
   compute_external_wrench(state);
   return HardwareStatus::kOk;

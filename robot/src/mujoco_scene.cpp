@@ -8,16 +8,29 @@ namespace teleop::robot {
 namespace {
 
 void delete_data(mjData* d) { mj_deleteData(d); }
+void delete_model(mjModel* m) { mj_deleteModel(m); }
 
 }  // namespace
 
 MujocoScene::MujocoScene(const MujocoSceneConfig& config)
     : sim_(sim::MujocoModel::load(config.model_path)),
+      nominal_(nullptr, delete_model),
       rest_(nullptr, delete_data),
+      real_robot_(config.real_robot),
       file_name_(std::filesystem::path(config.model_path).filename().string()) {
+  if (real_robot_) {
+    // every arm of the scene off by its own draw; gravity compensation from the model as it was
+    nominal_.reset(mj_copyModel(nullptr, sim_.model()));
+    if (!nominal_) throw std::runtime_error(config.model_path + ": cannot copy the model");
+    const sim::ActuatedJoints joints = sim::find_actuated_joints(sim_.model(), config.model_path);
+    perturbation_ = sim::perturb_plant(sim_.model(), sim_.data(), joints, real_robot_->perturbation,
+                                       sim::derived_seed(real_robot_->seed, 0));
+    perturbation_.seed = real_robot_->seed;
+    sim_.reset();
+  }
   const mjModel* m = sim_.model();
   if (!config.keyframe.empty()) sim_.reset(config.keyframe);
-  rest_.reset(mj_makeData(m));
+  rest_.reset(mj_makeData(nominal_ ? nominal_.get() : m));
   const double steps = config.period_s / m->opt.timestep;
   substeps_ = static_cast<int>(std::lround(steps));
   if (substeps_ < 1 || std::abs(steps - substeps_) > 1e-6) {
@@ -39,7 +52,7 @@ void MujocoScene::state_changed() {
 
 const mjtNum* MujocoScene::gravity() {
   if (!gravity_current_) {
-    const mjModel* m = sim_.model();
+    const mjModel* m = nominal_ ? nominal_.get() : sim_.model();
     // the same pose at rest: the bias forces are then gravity alone
     mju_copy(rest_->qpos, sim_.data()->qpos, m->nq);
     mju_zero(rest_->qvel, m->nv);

@@ -3,6 +3,8 @@
   python3 scripts/teleop_plot run RUN_DIR [OUT_DIR]     the traces of one run (<node>.csv) -> OUT_DIR/*.png
   python3 scripts/teleop_plot results CSV [OUT_DIR]     an experiment's results -> OUT_DIR/<csv name>_<metric>.png
   python3 scripts/teleop_plot hand TRACE_CSV [OUT_DIR]  the hand study's trace -> OUT_DIR/hand_tip_force.png, hand_joints.png
+  python3 scripts/teleop_plot fidelity TRACE_CSV SEGMENTS_CSV [OUT_DIR]
+                                                       the fidelity study's -> OUT_DIR/fidelity_<sequence>_*.png
 
 Exit status: 0 done (figures whose columns a run lacks are skipped with a message), 1 an error
 (no trace in the dir, a file that cannot be read), 2 bad arguments, 3 no matplotlib.
@@ -27,6 +29,10 @@ def main():
     hand = commands.add_parser("hand", help="the hand study's figures from its trace CSV")
     hand.add_argument("csv")
     hand.add_argument("out_dir", nargs="?", help="default: the CSV's folder")
+    fidelity = commands.add_parser("fidelity", help="the fidelity study's figures from its trace and segments CSVs")
+    fidelity.add_argument("csv")
+    fidelity.add_argument("segments")
+    fidelity.add_argument("out_dir", nargs="?", help="default: the CSV's folder")
     args = parser.parse_args()
     try:
         import matplotlib  # noqa: F401  (only to say clearly that it is missing)
@@ -36,6 +42,7 @@ def main():
         return EXIT_NO_MATPLOTLIB
     # imported here: they load matplotlib
     import figure_style
+    from fidelity_figures import FidelityTraceError, fidelity_figures
     from hand_figures import HandTraceError, hand_figures
     from results_figures import ResultsError, results_figures
     from run_figures import FIGURES, Skip
@@ -54,13 +61,15 @@ def main():
                     write(figure(traces), args.out_dir or args.run_dir)
                 except Skip as why:
                     print(f"teleop plot: skipped {name}: {why} ({args.run_dir})")
+        elif args.command == "fidelity":
+            write(fidelity_figures(args.csv, args.segments), args.out_dir or os.path.dirname(os.path.abspath(args.csv)))
         elif args.command == "hand":
             write(hand_figures(args.csv), args.out_dir or os.path.dirname(os.path.abspath(args.csv)))
         else:
             stem = os.path.splitext(os.path.basename(args.csv))[0]
             out_dir = args.out_dir or os.path.dirname(os.path.abspath(args.csv))
             write(results_figures(args.csv, stem), out_dir, stem + "_")
-    except (TraceError, ResultsError, HandTraceError, OSError) as e:
+    except (TraceError, ResultsError, HandTraceError, FidelityTraceError, OSError) as e:
         print(f"teleop plot: {e}", file=sys.stderr)
         return EXIT_ERROR
     return 0

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <complex>
 #include <numbers>
@@ -104,6 +105,80 @@ TEST(MinFinite, SkipsNanAndIsNanWhenAllAre) {
   EXPECT_DOUBLE_EQ(min_finite({kNaN, 3, -2, kNaN}), -2);
   EXPECT_TRUE(std::isnan(min_finite({kNaN, kNaN})));
   EXPECT_TRUE(std::isnan(min_finite({})));
+}
+
+// --- the coupling thesis's fidelity metrics (§4.1) ---
+
+Quaternion as_array(const Eigen::Quaterniond& q) { return {q.w(), q.x(), q.y(), q.z()}; }
+
+Quaternion about(const Eigen::Vector3d& axis, double angle_rad) {
+  return as_array(Eigen::Quaterniond(Eigen::AngleAxisd(angle_rad, axis.normalized())));
+}
+
+TEST(RotationDistance, IsZeroForIdenticalQuaternions) {
+  EXPECT_EQ(rotation_distance({1, 0, 0, 0}, {1, 0, 0, 0}), 0.0);
+  const Quaternion q = about({0.3, -0.5, 0.8}, 1.234);
+  EXPECT_EQ(rotation_distance(q, q), 0.0);
+}
+
+TEST(RotationDistance, IsTwoForANinetyDegreeRotationAboutAnyAxis) {
+  // by hand: q1 = (1, 0, 0, 0), q2 = (cos 45°, sin 45° n): q1 . q2 = cos 45° = 1/sqrt(2), so
+  // theta = 2 sqrt(2 (1 - 1/2)) = 2
+  const double c = std::sqrt(0.5);
+  EXPECT_DOUBLE_EQ(rotation_distance({1, 0, 0, 0}, {c, c, 0, 0}), 2.0);
+  EXPECT_DOUBLE_EQ(rotation_distance({1, 0, 0, 0}, {c, 0, c, 0}), 2.0);
+  EXPECT_DOUBLE_EQ(rotation_distance({1, 0, 0, 0}, {c, 0, 0, c}), 2.0);
+  // any axis, and between two rotations that are not the identity (bi-invariance)
+  const Eigen::Quaterniond start(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
+  for (const Eigen::Vector3d& axis : {Eigen::Vector3d(1, 1, 0), Eigen::Vector3d(-0.2, 0.9, 0.4)}) {
+    const Eigen::Quaterniond turned = start * Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, axis.normalized()));
+    EXPECT_NEAR(rotation_distance(as_array(start), as_array(turned)), 2.0, 1e-12);
+  }
+}
+
+TEST(RotationDistance, GivesTheThesisValueForOneDegree) {
+  // thesis §4.3.2: "a rotation about one degree on one axis ... leads to a rotation error of 0.0247"
+  const double theta = rotation_distance({1, 0, 0, 0}, about({0, 0, 1}, M_PI / 180));
+  EXPECT_NEAR(theta, 0.0247, 5e-5);
+  EXPECT_NEAR(theta, 2 * std::sqrt(2.0) * std::sin(M_PI / 360), 1e-12);
+}
+
+TEST(RotationDistance, IsTheSameForQAndMinusQ) {
+  const Quaternion q1 = about({0.2, 0.3, -0.9}, 0.4);
+  const Quaternion q2 = about({-1, 0.5, 0.1}, 2.1);
+  const Quaternion minus_q2{-q2[0], -q2[1], -q2[2], -q2[3]};
+  const Quaternion minus_q1{-q1[0], -q1[1], -q1[2], -q1[3]};
+  EXPECT_DOUBLE_EQ(rotation_distance(q1, minus_q2), rotation_distance(q1, q2));
+  EXPECT_DOUBLE_EQ(rotation_distance(minus_q1, q2), rotation_distance(q1, q2));
+  EXPECT_EQ(rotation_distance(q1, minus_q1), 0.0);
+  EXPECT_GT(rotation_distance(q1, q2), 0.1);
+}
+
+TEST(Rmse, OfEqualErrorsIsThatError) {
+  // thesis §4.1.1: "If every joint has the same absolute error size y°, the RMSE will be y"
+  const std::vector<double> equal(7, 0.25);
+  EXPECT_DOUBLE_EQ(rmse(equal), 0.25);
+  const std::vector<double> signs{0.25, -0.25, 0.25, -0.25, -0.25, 0.25, 0.25};
+  EXPECT_DOUBLE_EQ(rmse(signs), 0.25);
+  EXPECT_DOUBLE_EQ(max_abs(signs), 0.25);
+  // by hand: sqrt((9 + 16) / 2) = sqrt(12.5); the largest single error is 4
+  EXPECT_DOUBLE_EQ(rmse(std::vector<double>{3.0, -4.0}), std::sqrt(12.5));
+  EXPECT_DOUBLE_EQ(max_abs(std::vector<double>{3.0, -4.0}), 4.0);
+  EXPECT_TRUE(std::isnan(rmse(std::vector<double>{})));
+  EXPECT_TRUE(std::isnan(max_abs(std::vector<double>{})));
+}
+
+TEST(Summary, GivesMeanPopulationSdAndMaxOfTheFiniteSamplesInTheWindow) {
+  const std::vector<double> t{0, 1, 2, 3, 4, 5};
+  const std::vector<double> v{100, 1, kNaN, 3, 5, 100};
+  const Summary s = summarize_in(t, v, {1, 4});
+  EXPECT_EQ(s.samples, 3u);
+  EXPECT_DOUBLE_EQ(s.mean, 3.0);
+  EXPECT_DOUBLE_EQ(s.sd, std::sqrt(8.0 / 3.0));
+  EXPECT_DOUBLE_EQ(s.max, 5.0);
+  const Summary none = summarize_in(t, v, {10, 11});
+  EXPECT_EQ(none.samples, 0u);
+  EXPECT_TRUE(std::isnan(none.mean));
 }
 
 }  // namespace

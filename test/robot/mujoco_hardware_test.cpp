@@ -6,6 +6,8 @@
 #include <limits>
 
 #include "allocation_counter.h"
+#include "teleop/common/config.h"
+#include "teleop/robot/mujoco_backend.h"
 #include "test_helpers.h"
 
 namespace teleop::robot {
@@ -147,6 +149,67 @@ TEST(MujocoHardwareOnASharedScene, NamesTheMissingArmOrSite) {
   MujocoHardwareConfig no_site = two_arm_arm("left");
   no_site.ee_site = "left_gripper";
   EXPECT_THROW(MujocoHardware(scene, no_site), std::runtime_error);
+}
+
+// the fidelity study's "real" robot as the follower's plant (docs/fidelity.md)
+MujocoHardwareConfig real_wall_scene(uint64_t seed) {
+  MujocoHardwareConfig c = wall_scene();
+  c.real_robot = sim::RealRobotSpec{};
+  c.real_robot->seed = seed;
+  return c;
+}
+
+TEST(MujocoHardwareAsARealRobot, IsPerturbedAsDrawnAndReadsNoisySensors) {
+  MujocoHardware nominal(wall_scene());
+  MujocoHardware real(real_wall_scene(3));
+  const mjModel* n = nominal.simulation().model();
+  const mjModel* m = real.simulation().model();
+  const int link4 = real.simulation().body_id("link4");
+  ArmState a, b;
+  ASSERT_EQ(real.read(a), HardwareStatus::kOk);
+  ASSERT_EQ(real.read(b), HardwareStatus::kOk);
+  // the same state read twice: the sensors differ, each within a few sigma of the truth
+  for (size_t j = 0; j < 7; ++j) {
+    EXPECT_NE(a.q_rad[j], b.q_rad[j]) << "joint " << j;
+    EXPECT_NEAR(a.q_rad[j], nominal.simulation().data()->qpos[j], 6e-4) << "joint " << j;
+  }
+  EXPECT_NE(m->body_mass[link4], n->body_mass[link4]);
+  EXPECT_NEAR(m->body_mass[link4], n->body_mass[link4], 0.1 * n->body_mass[link4] + 1e-12);
+}
+
+TEST(MujocoHardwareAsARealRobot, ItsOwnGravityCompensationIsTheNominalModelsSoItSagsWhereTheModelHolds) {
+  // the nominal arm holds its pose with zero torque (above); the real one is compensated by the
+  // model's gravity, which is not its own: it moves, the same way for the same seed
+  const auto drift = [](uint64_t seed) {
+    MujocoHardware hw(real_wall_scene(seed));
+    ArmState start, s;
+    EXPECT_EQ(hw.read(start), HardwareStatus::kOk);
+    for (int i = 0; i < 500; ++i) EXPECT_EQ(hw.write(JointVector{}), HardwareStatus::kOk);
+    EXPECT_EQ(hw.read(s), HardwareStatus::kOk);
+    double largest = 0.0;
+    for (size_t j = 0; j < 7; ++j) largest = std::max(largest, std::abs(s.q_rad[j] - start.q_rad[j]));
+    return largest;
+  };
+  const double first = drift(5);
+  EXPECT_GT(first, 0.02);
+  EXPECT_EQ(drift(5), first);
+}
+
+TEST(MujocoHardwareAsARealRobot, TheFollowersConfigNamesIt) {
+  const ConfigNode section = ConfigNode::load_string(
+      "hardware: mujoco\nmujoco:\n  model: " + std::string(TELEOP_SOURCE_DIR) +
+          "/config/models/scene_wall.xml\n  real_robot: {seed: 9, perturbation: {mass_fraction: 0.05}}\n",
+      "follower.yaml");
+  const auto spec = parse_mujoco_hardware(section);
+  ASSERT_TRUE(spec->config().real_robot.has_value());
+  EXPECT_EQ(spec->config().real_robot->seed, 9u);
+  EXPECT_DOUBLE_EQ(spec->config().real_robot->perturbation.mass_fraction, 0.05);
+  EXPECT_DOUBLE_EQ(spec->config().real_robot->perturbation.friction_fraction, 0.30);  // the documented default
+  EXPECT_FALSE(parse_mujoco_hardware(ConfigNode::load_string("mujoco: {model: " + std::string(TELEOP_SOURCE_DIR) +
+                                                                 "/config/models/scene_wall.xml}\n",
+                                                             "follower.yaml"))
+                   ->config()
+                   .real_robot.has_value());
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstddef>
+#include <span>
 #include <vector>
 
 namespace teleop::experiment {
@@ -51,5 +52,33 @@ double fraction_at_least(const std::vector<double>& v, double threshold);
 double fraction_equal(const std::vector<double>& v, double value);
 /// Smallest finite value; NaN when there is none.
 double min_finite(const std::vector<double>& v);
+
+// --- simulation fidelity (the coupling thesis, §4.1: real robot against its simulation) ---
+
+/// Root mean square of the errors, thesis eq. 4.2: sqrt(sum e_i^2 / N). In the unit of the
+/// errors (degrees in, "degrees" out): N equal errors of size y give y. NaN when empty.
+double rmse(std::span<const double> errors);
+/// Largest |e_i|; NaN when empty.
+double max_abs(std::span<const double> errors);
+
+/// A rotation as a unit quaternion (w, x, y, z).
+using Quaternion = std::array<double, 4>;
+/// The rotation distance of thesis eq. 4.5, theta = 2 sqrt(2 (1 - (q1 . q2)^2)), the dot
+/// product over all four components. Dimensionless, 0 for equal rotations, the same for q and
+/// -q (the same rotation), 2 sqrt(2) sin(alpha / 2) for two rotations alpha apart: 0.0247 for
+/// 1 degree, 2 for 90 degrees. Both quaternions must be unit (1 - (q1 . q2)^2 is computed as
+/// |q1|^2 |q2|^2 - (q1 . q2)^2, by Lagrange's identity, so equal rotations give exactly 0).
+double rotation_distance(const Quaternion& q1, const Quaternion& q2);
+
+/// Mean, standard deviation (population) and maximum of a signal over time: what the thesis
+/// keeps of each movement's error signal (§4.2.3).
+struct Summary {
+  double mean = 0.0;
+  double sd = 0.0;
+  double max = 0.0;
+  size_t samples = 0;
+};
+/// Summary of the finite values whose time lies in `w`; NaN fields (and 0 samples) when none.
+Summary summarize_in(const std::vector<double>& t, const std::vector<double>& v, Window w);
 
 }  // namespace teleop::experiment

@@ -46,4 +46,10 @@ void plot_results(const PlotTool& tool, const std::string& csv_path);
 /// Throws PlotError.
 void plot_hand_study(const PlotTool& tool, const std::string& trace_csv, const std::string& out_dir);
 
+/// Writes the fidelity study's figures (docs/fidelity.md) into `out_dir`: per movement, the joint,
+/// torque and end-effector errors over time of both controllers (the thesis's Fig. 4.4), and the
+/// contact sequence's. Throws PlotError.
+void plot_fidelity_study(const PlotTool& tool, const std::string& trace_csv, const std::string& segments_csv,
+                         const std::string& out_dir);
+
 }  // namespace teleop::experiment

@@ -26,7 +26,8 @@ class MujocoHardwareSpec final : public HardwareSpec {
 /// The settings of `spec`, a simulation's (throws std::invalid_argument for another backend).
 const MujocoHardwareConfig& mujoco_config(const HardwareSpec& spec);
 
-/// Reads `section.mujoco` (model: the scene's MJCF, loaded once here; keyframe).
+/// Reads `section.mujoco` (model: the scene's MJCF, loaded once here; keyframe; real_robot: a
+/// perturbed arm with noisy sensors instead of the model, sim/plant_perturbation.h).
 std::shared_ptr<const MujocoHardwareSpec> parse_mujoco_hardware(const ConfigNode& section);
 
 /// Registers the simulation as `mujoco`.

@@ -5,6 +5,7 @@
 // the scene steps it then).
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "teleop/robot/mujoco_scene.h"
@@ -50,6 +51,8 @@ class MujocoHardware final : public RobotHardware {
   std::string name_;
   sim::ActuatedJoints arm_;
   int ee_body_ = -1;
+  // a "real" robot's sensors (MujocoSceneConfig::real_robot): noise on q, dq and the joint torque
+  std::optional<sim::SensorNoise> noise_;
 };
 
 }  // namespace teleop::robot

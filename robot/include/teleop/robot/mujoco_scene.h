@@ -5,9 +5,11 @@
 // Each arm is a MujocoHardware view onto it; the scene advances by one control period per step().
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "teleop/sim/mujoco_model.h"
+#include "teleop/sim/plant_perturbation.h"
 
 namespace teleop::robot {
 
@@ -18,6 +20,10 @@ struct MujocoSceneConfig {
   std::string keyframe;
   /// Control period; the model's timestep must divide it.
   double period_s = 0.001;
+  /// A "real" robot instead of the model (docs/fidelity.md): the scene's arms perturbed within
+  /// these bounds, their sensors noisy, drawn from its seed. The robot's own gravity compensation
+  /// stays the nominal model's, as a real robot's comes from its maker's model.
+  std::optional<sim::RealRobotSpec> real_robot;
 };
 
 class MujocoScene {
@@ -28,8 +34,13 @@ class MujocoScene {
   /// Advances the simulation by one control period. Real-time safe.
   void step();
   /// Gravity torque of every degree of freedom at the current pose, computed once per period on
-  /// a second mjData at rest, so the simulation itself is not disturbed. Real-time safe.
+  /// a second mjData at rest, so the simulation itself is not disturbed; by the nominal model
+  /// when the scene is a perturbed "real" robot. Real-time safe.
   const mjtNum* gravity();
+  /// The perturbation drawn for a "real" robot (empty otherwise).
+  const sim::AppliedPerturbation& perturbation() const { return perturbation_; }
+  /// The "real" robot this scene is, if it is one.
+  const std::optional<sim::RealRobotSpec>& real_robot() const { return real_robot_; }
   /// Call after changing the state outside step() (setup: placing an arm).
   void state_changed();
 
@@ -39,7 +50,11 @@ class MujocoScene {
 
  private:
   sim::MujocoModel sim_;
+  // the nominal model a "real" robot compensates gravity with (null: the simulated one)
+  std::unique_ptr<mjModel, void (*)(mjModel*)> nominal_;
   std::unique_ptr<mjData, void (*)(mjData*)> rest_;
+  std::optional<sim::RealRobotSpec> real_robot_;
+  sim::AppliedPerturbation perturbation_;
   std::string file_name_;
   int substeps_ = 1;
   bool gravity_current_ = false;
