@@ -1,0 +1,152 @@
+#include "teleop/view/bus_layers.h"
+
+#include <spdlog/fmt/fmt.h>
+
+#include "teleop/transport/arm_topic.h"
+#include "teleop/transport/joint_fields.h"
+#include "teleop/transport/topics.h"
+
+namespace teleop::view {
+
+// one arm's samples of one layer
+struct BusLayers::ArmFeed {
+  Layer layer = Layer::kFollower;
+  size_t arm = 0;
+  std::string topic;
+  transport::Reader<msg::JointState> state;      // follower, twin
+  transport::Reader<msg::JointCommand> command;  // leader
+  msg::JointState state_sample;
+  msg::JointCommand command_sample;
+  uint64_t received = 0;
+  uint64_t mismatched = 0;
+  int64_t last_ns = 0;
+  bool posed = false;
+};
+
+struct BusLayers::ObjectFeed {
+  size_t body = 0;
+  std::string topic;
+  transport::Reader<msg::ObjectPose> reader;
+  msg::ObjectPose sample;
+  uint64_t received = 0;
+  int64_t last_ns = 0;
+};
+
+BusLayers::BusLayers(transport::Participant& participant, const PosedScene& scene, LayerChoice choice) {
+  auto add = [&](Layer layer, size_t arm, const std::string& topic) -> ArmFeed& {
+    arms_.push_back(std::make_unique<ArmFeed>());
+    ArmFeed& f = *arms_.back();
+    f.layer = layer;
+    f.arm = arm;
+    f.topic = topic;
+    return f;
+  };
+  for (size_t a = 0; a < scene.arm_count(); ++a) {
+    const std::string& arm = scene.arm(a).name;
+    {
+      const auto topic = transport::arm_topic(transport::topics::kFollowerState, arm);
+      add(Layer::kFollower, a, topic.name()).state = participant.make_reader<msg::JointState>(topic);
+    }
+    if (choice.twin) {
+      const auto topic = transport::arm_topic(transport::topics::kTwinState, arm);
+      add(Layer::kTwin, a, topic.name()).state = participant.make_reader<msg::JointState>(topic);
+    }
+    if (choice.leader) {
+      const auto topic = transport::arm_topic(transport::topics::kLeaderCommand, arm);
+      add(Layer::kLeader, a, topic.name()).command = participant.make_reader<msg::JointCommand>(topic);
+    }
+  }
+  for (size_t b = 0; b < scene.free_bodies().size(); ++b) {
+    const std::string topic = transport::topics::kFollowerObjectPosePrefix + scene.free_bodies()[b].name;
+    const transport::TopicSpec<msg::ObjectPose> spec{topic.c_str(), transport::QosPreset::kStream};
+    objects_.push_back(std::make_unique<ObjectFeed>());
+    objects_.back()->body = b;
+    objects_.back()->topic = topic;
+    objects_.back()->reader = participant.make_reader(spec);
+  }
+}
+
+BusLayers::~BusLayers() = default;
+
+bool BusLayers::update(PosedScene& scene) {
+  bool posed = false;
+  for (auto& f : arms_) {
+    bool fresh = false;
+    if (f->layer == Layer::kLeader) {
+      while (f->command.take_next(f->command_sample)) {
+        fresh = true;
+        ++f->received;
+      }
+    } else {
+      while (f->state.take_next(f->state_sample)) {
+        fresh = true;
+        ++f->received;
+      }
+    }
+    if (!fresh) continue;
+    bool ok = false;
+    if (f->layer == Layer::kLeader) {
+      const auto& c = f->command_sample;
+      ok = scene.set_joints(f->layer, f->arm, c.q_des_rad().data(), c.q_des_rad().size());
+      f->last_ns = c.header().stamp_ns();
+    } else {
+      const auto& s = f->state_sample;
+      const size_t n = s.q_rad().size();
+      const bool full = s.dq_radps().size() == n && s.tau_measured_nm().size() == n;
+      // only the follower's measured torques make its contact forces
+      const bool torques = full && f->layer == Layer::kFollower;
+      ok = scene.set_joints(f->layer, f->arm, s.q_rad().data(), n, full ? s.dq_radps().data() : nullptr,
+                            torques ? s.tau_measured_nm().data() : nullptr);
+      f->last_ns = s.header().stamp_ns();
+    }
+    if (!ok) ++f->mismatched;
+    f->posed = f->posed || ok;
+    posed = posed || ok;
+  }
+  for (auto& o : objects_) {
+    bool fresh = false;
+    while (o->reader.take_next(o->sample)) {
+      fresh = true;
+      ++o->received;
+    }
+    if (!fresh) continue;
+    o->last_ns = o->sample.header().stamp_ns();
+    double position[3];
+    double quaternion[4];
+    transport::read_vector3(o->sample.world_pose().position_m(), position);
+    transport::read_quaternion(o->sample.world_pose().orientation(), quaternion);
+    scene.set_body_pose(Layer::kFollower, o->body, position, quaternion);
+    posed = true;
+  }
+  return posed;
+}
+
+bool BusLayers::complete(Layer layer) const {
+  for (const auto& f : arms_) {
+    if (f->layer == layer && !f->posed) return false;
+  }
+  return true;
+}
+
+std::string BusLayers::missing(Layer layer) const {
+  std::string out;
+  for (const auto& f : arms_) {
+    if (f->layer == layer && f->received == 0) out += (out.empty() ? "" : ", ") + f->topic;
+  }
+  return out;
+}
+
+std::string BusLayers::status(int64_t now_ns) const {
+  std::string out;
+  auto line = [&](const std::string& topic, uint64_t received, int64_t last_ns, uint64_t mismatched) {
+    std::string state = received == 0 ? std::string("no data yet")
+                                       : fmt::format("{} samples, newest {:.0f} ms old", received, (now_ns - last_ns) * 1e-6);
+    if (mismatched > 0) state += fmt::format(", {} with the wrong joint count", mismatched);
+    out += (out.empty() ? "" : "\n") + topic + "\t" + state;
+  };
+  for (const auto& f : arms_) line(f->topic, f->received, f->last_ns, f->mismatched);
+  for (const auto& o : objects_) line(o->topic, o->received, o->last_ns, 0);
+  return out;
+}
+
+}  // namespace teleop::view
