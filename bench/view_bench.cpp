@@ -51,9 +51,9 @@ std::vector<std::vector<double>> home_pose(PosedScene& scene) {
   return home;
 }
 
-double measure(PosedScene& scene, bool offscreen, int frames, int width, int height, bool shadows) {
+double measure(PosedScene& scene, bool offscreen, int frames, int width, int height, bool shadows, int samples) {
   GlWindow window("teleop_view_bench", offscreen ? 64 : width, offscreen ? 64 : height, !offscreen);
-  SceneRenderer renderer(scene, width, height);
+  SceneRenderer renderer(scene, width, height, samples);
   renderer.settings().shadows = shadows;
   renderer.use_offscreen(offscreen);
   const std::vector<std::vector<double>> home = home_pose(scene);
@@ -83,24 +83,28 @@ int main(int argc, char** argv) {
   int width = 1280;
   int height = 720;
   bool shadows = true;
+  int samples = -1;
   app.add_option("-n,--frames", frames, "frames per measurement (default 100)")->check(CLI::Range(1, 100000));
   app.add_option("--width", width, "picture width (default 1280)")->check(CLI::Range(64, 4096));
   app.add_option("--height", height, "picture height (default 720)")->check(CLI::Range(64, 4096));
   app.add_flag("--no-shadows{false}", shadows, "without shadows");
+  app.add_option("--samples", samples, "multisamples of the offscreen buffer (default: the model's, 4)")
+      ->check(CLI::Range(0, 16));
   CLI11_PARSE(app, argc, argv);
   try {
     std::printf("%-34s %-10s %10s %10s\n", "scene", "target", "fps", "ms/frame");
     for (const char* node : {"follower.yaml", "follower_box_task.yaml"}) {
       PosedScene scene(read_view_model(std::string(TELEOP_SOURCE_DIR) + "/config/nodes/" + node));
       for (bool offscreen : {false, true}) {
-        const double fps = measure(scene, offscreen, frames, width, height, shadows);
+        const double fps = measure(scene, offscreen, frames, width, height, shadows, samples);
         std::printf("%-34s %-10s %10.1f %10.1f\n", (std::string(node) + " (" + std::to_string(scene.arm_count()) + " arm" +
                                                     (scene.arm_count() > 1 ? "s)" : ")")).c_str(),
                     offscreen ? "offscreen" : "window", fps, 1000.0 / fps);
         std::fflush(stdout);
       }
     }
-    std::printf("%dx%d, %d frames each, shadows %s\n", width, height, frames, shadows ? "on" : "off");
+    std::printf("%dx%d, %d frames each, shadows %s, offscreen multisamples %s\n", width, height, frames,
+                shadows ? "on" : "off", samples < 0 ? "4 (the model's)" : std::to_string(samples).c_str());
   } catch (const DisplayError& e) {
     std::fprintf(stderr, "teleop_view_bench: %s\n", e.what());
     return 1;

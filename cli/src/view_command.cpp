@@ -93,6 +93,8 @@ void ViewCommands::add_render(CLI::App& app) {
   render_->add_flag("--leader", o.leader, "a ghost of the leader's positions (leader.csv, same joints as the follower)");
   render_->add_flag("--no-contacts", no_contacts_, "no contact points and no external-force arrows");
   render_->add_flag("--no-shadows", no_shadows_, "no shadows (faster)");
+  render_->add_option("--samples", o.samples, "multisamples per pixel, anti-aliasing (default 4; 0 is faster)")
+      ->check(CLI::Range(0, 16));
   render_->add_flag("--no-overlay", no_overlay_, "no run name and time over the frames");
 }
 

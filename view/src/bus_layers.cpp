@@ -20,7 +20,9 @@ struct BusLayers::ArmFeed {
   uint64_t received = 0;
   uint64_t mismatched = 0;
   int64_t last_ns = 0;
+  uint64_t last_seq = 0;
   bool posed = false;
+  bool is_command() const { return layer == Layer::kLeader && topic.find("joint_command") != std::string::npos; }
 };
 
 struct BusLayers::ObjectFeed {
@@ -30,6 +32,7 @@ struct BusLayers::ObjectFeed {
   msg::ObjectPose sample;
   uint64_t received = 0;
   int64_t last_ns = 0;
+  uint64_t last_seq = 0;
 };
 
 BusLayers::BusLayers(transport::Participant& participant, const PosedScene& scene, LayerChoice choice) {
@@ -52,8 +55,12 @@ BusLayers::BusLayers(transport::Participant& participant, const PosedScene& scen
       add(Layer::kTwin, a, topic.name()).state = participant.make_reader<msg::JointState>(topic);
     }
     if (choice.leader) {
-      const auto topic = transport::arm_topic(transport::topics::kLeaderCommand, arm);
-      add(Layer::kLeader, a, topic.name()).command = participant.make_reader<msg::JointCommand>(topic);
+      // the operator's command: the leader's joint command (position-position, PFC), or the
+      // device's state where the twin is commanded by it (MMT)
+      const auto command = transport::arm_topic(transport::topics::kLeaderCommand, arm);
+      add(Layer::kLeader, a, command.name()).command = participant.make_reader<msg::JointCommand>(command);
+      const auto state = transport::arm_topic(transport::topics::kLeaderState, arm);
+      add(Layer::kLeader, a, state.name()).state = participant.make_reader<msg::JointState>(state);
     }
   }
   for (size_t b = 0; b < scene.free_bodies().size(); ++b) {
@@ -72,7 +79,7 @@ bool BusLayers::update(PosedScene& scene) {
   bool posed = false;
   for (auto& f : arms_) {
     bool fresh = false;
-    if (f->layer == Layer::kLeader) {
+    if (f->is_command()) {
       while (f->command.take_next(f->command_sample)) {
         fresh = true;
         ++f->received;
@@ -85,10 +92,11 @@ bool BusLayers::update(PosedScene& scene) {
     }
     if (!fresh) continue;
     bool ok = false;
-    if (f->layer == Layer::kLeader) {
+    if (f->is_command()) {
       const auto& c = f->command_sample;
       ok = scene.set_joints(f->layer, f->arm, c.q_des_rad().data(), c.q_des_rad().size());
       f->last_ns = c.header().stamp_ns();
+      f->last_seq = c.header().seq();
     } else {
       const auto& s = f->state_sample;
       const size_t n = s.q_rad().size();
@@ -98,6 +106,7 @@ bool BusLayers::update(PosedScene& scene) {
       ok = scene.set_joints(f->layer, f->arm, s.q_rad().data(), n, full ? s.dq_radps().data() : nullptr,
                             torques ? s.tau_measured_nm().data() : nullptr);
       f->last_ns = s.header().stamp_ns();
+      f->last_seq = s.header().seq();
     }
     if (!ok) ++f->mismatched;
     f->posed = f->posed || ok;
@@ -111,6 +120,7 @@ bool BusLayers::update(PosedScene& scene) {
     }
     if (!fresh) continue;
     o->last_ns = o->sample.header().stamp_ns();
+    o->last_seq = o->sample.header().seq();
     double position[3];
     double quaternion[4];
     transport::read_vector3(o->sample.world_pose().position_m(), position);
@@ -122,8 +132,12 @@ bool BusLayers::update(PosedScene& scene) {
 }
 
 bool BusLayers::complete(Layer layer) const {
+  // every arm posed by one of its layer's topics
   for (const auto& f : arms_) {
-    if (f->layer == layer && !f->posed) return false;
+    if (f->layer != layer) continue;
+    bool posed = false;
+    for (const auto& g : arms_) posed = posed || (g->layer == layer && g->arm == f->arm && g->posed);
+    if (!posed) return false;
   }
   return true;
 }
@@ -131,21 +145,31 @@ bool BusLayers::complete(Layer layer) const {
 std::string BusLayers::missing(Layer layer) const {
   std::string out;
   for (const auto& f : arms_) {
-    if (f->layer == layer && f->received == 0) out += (out.empty() ? "" : ", ") + f->topic;
+    if (f->layer != layer) continue;
+    bool posed = false;
+    std::string topics;
+    for (const auto& g : arms_) {
+      if (g->layer != layer || g->arm != f->arm) continue;
+      posed = posed || g->posed;
+      topics += (topics.empty() ? "" : " or ") + g->topic;
+    }
+    if (!posed && out.find(topics) == std::string::npos) out += (out.empty() ? "" : ", ") + topics;
   }
   return out;
 }
 
 std::string BusLayers::status(int64_t now_ns) const {
   std::string out;
-  auto line = [&](const std::string& topic, uint64_t received, int64_t last_ns, uint64_t mismatched) {
+  // the newest sample's number and age (the streams keep only the newest: what a frame takes is
+  // not what was sent)
+  auto line = [&](const std::string& topic, uint64_t received, int64_t last_ns, uint64_t last_seq, uint64_t mismatched) {
     std::string state = received == 0 ? std::string("no data yet")
-                                       : fmt::format("{} samples, newest {:.0f} ms old", received, (now_ns - last_ns) * 1e-6);
+                                       : fmt::format("seq {}, {:.0f} ms old", last_seq, static_cast<double>(now_ns - last_ns) * 1e-6);
     if (mismatched > 0) state += fmt::format(", {} with the wrong joint count", mismatched);
     out += (out.empty() ? "" : "\n") + topic + "\t" + state;
   };
-  for (const auto& f : arms_) line(f->topic, f->received, f->last_ns, f->mismatched);
-  for (const auto& o : objects_) line(o->topic, o->received, o->last_ns, 0);
+  for (const auto& f : arms_) line(f->topic, f->received, f->last_ns, f->last_seq, f->mismatched);
+  for (const auto& o : objects_) line(o->topic, o->received, o->last_ns, o->last_seq, 0);
   return out;
 }
 

@@ -24,14 +24,35 @@ std::string display_hint() {
          "another host with `ssh -X` (docs/view.md)";
 }
 
+// GLFW once per process, ended at exit: its connection to the X server stays open between
+// windows (an Xvfb without -noreset resets when its last client goes, and refuses the next one
+// for a moment: `teleop experiment --render` renders one run after the other)
+struct Glfw {
+  bool ok = false;
+  std::string error;
+  Glfw() {
+    glfwSetErrorCallback(on_glfw_error);
+    ok = glfwInit() == GLFW_TRUE;
+    error = last_glfw_error();
+  }
+  ~Glfw() {
+    if (ok) glfwTerminate();
+  }
+};
+
+const Glfw& glfw() {
+  static const Glfw instance;
+  return instance;
+}
+
 }  // namespace
 
 GlWindow::GlWindow(const std::string& title, int width, int height, bool visible) {
-  glfwSetErrorCallback(on_glfw_error);
-  last_glfw_error().clear();
-  if (glfwInit() != GLFW_TRUE) {
-    throw DisplayError("no display to open a window on (" + last_glfw_error() + "): " + display_hint());
+  if (!glfw().ok) {
+    throw DisplayError("no display to open a window on (" + glfw().error + "): " + display_hint());
   }
+  last_glfw_error().clear();
+  glfwDefaultWindowHints();
   glfwWindowHint(GLFW_VISIBLE, visible ? GLFW_TRUE : GLFW_FALSE);
   // MuJoCo's renderer is OpenGL 1.5 + framebuffer objects: any context that gives a compatibility
   // profile will do; no multisampling of the window (software OpenGL pays for every sample)
@@ -40,7 +61,6 @@ GlWindow::GlWindow(const std::string& title, int width, int height, bool visible
   window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
   if (window_ == nullptr) {
     const std::string reason = last_glfw_error();
-    glfwTerminate();
     throw DisplayError("cannot open an OpenGL window (" + reason + "): " + display_hint());
   }
   glfwMakeContextCurrent(window_);
@@ -48,10 +68,7 @@ GlWindow::GlWindow(const std::string& title, int width, int height, bool visible
   glfwSwapInterval(0);
 }
 
-GlWindow::~GlWindow() {
-  glfwDestroyWindow(window_);
-  glfwTerminate();
-}
+GlWindow::~GlWindow() { glfwDestroyWindow(window_); }
 
 mjrRect GlWindow::framebuffer() const {
   mjrRect r{0, 0, 0, 0};

@@ -61,7 +61,7 @@ RenderResult render_run(const RenderOptions& options, FILE* log) {
 
   // a hidden window for its OpenGL context; the frames go to the offscreen buffer
   GlWindow window("teleop render", 64, 64, false);
-  SceneRenderer renderer(scene, options.width, options.height);
+  SceneRenderer renderer(scene, options.width, options.height, options.samples);
   renderer.use_offscreen(true);
   const mjrRect rect{0, 0, options.width, options.height};
   if (renderer.offscreen_rect().width < options.width || renderer.offscreen_rect().height < options.height) {
@@ -91,7 +91,7 @@ RenderResult render_run(const RenderOptions& options, FILE* log) {
   auto draw = [&](double t) {
     playback.pose(scene, t);
     scene.update();
-    renderer.set_arrows(options.contacts ? playback.forces(t) : std::vector<ForceArrow>{}, 0.005);
+    renderer.set_arrows(options.contacts ? playback.forces(t) : std::vector<ForceArrow>{}, 0.01);
     renderer.render(rect, options.overlay ? fmt::format("{}\nt = {:.2f} s", label, t) : "",
                     options.overlay ? legend : "");
     return renderer.read(rect);

@@ -12,17 +12,19 @@ constexpr int kMaxGeoms = 6000;
 
 }  // namespace
 
-SceneRenderer::SceneRenderer(PosedScene& scene, int offscreen_width, int offscreen_height) : posed_(&scene) {
+SceneRenderer::SceneRenderer(PosedScene& scene, int offscreen_width, int offscreen_height, int offscreen_samples)
+    : posed_(&scene) {
   mjModel* m = scene.model();
   if (offscreen_width > 0) m->vis.global.offwidth = offscreen_width;
   if (offscreen_height > 0) m->vis.global.offheight = offscreen_height;
+  if (offscreen_samples >= 0) m->vis.quality.offsamples = offscreen_samples;
   mjv_defaultCamera(&camera_);
   mjv_defaultOption(&option_);
   mjv_defaultPerturb(&perturb_);
   mjv_defaultScene(&scene_);
   mjr_defaultContext(&context_);
   mjv_makeScene(m, &scene_, kMaxGeoms);
-  mjr_makeContext(m, &context_, mjFONTSCALE_150);
+  mjr_makeContext(m, &context_, mjFONTSCALE_100);
   reset_camera();
 }
 
@@ -98,6 +100,11 @@ void SceneRenderer::add_ghost(Layer layer, const std::array<float, 4>& rgba) {
     for (int k = 0; k < 3; ++k) g.rgba[k] = 0.5f * g.rgba[k] + 0.5f * rgba[static_cast<size_t>(k)];
     g.rgba[3] = rgba[3];
     g.segid = -1;
+    // a ghost where the follower is would flicker in and out of the solid arm (same depth): its
+    // primitives a little larger (a mesh's size does not scale its drawing)
+    if (g.type != mjGEOM_MESH) {
+      for (float& size : g.size) size *= 1.02f;
+    }
     scene_.geoms[kept++] = g;
   }
   scene_.ngeom = kept;

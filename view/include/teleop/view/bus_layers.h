@@ -1,7 +1,8 @@
 #pragma once
 // The samples that pose a view, read from the bus: per arm the follower's measured joint state
 // (teleop/follower/joint_state[/arm]), the twin's state (teleop/twin/joint_state[/arm]) and
-// optionally the leader's command (teleop/leader/joint_command[/arm], its desired positions); the
+// optionally the leader's command (teleop/leader/joint_command[/arm], its desired positions, or
+// under MMT the device's teleop/leader/joint_state[/arm] that commands the twin); the
 // follower's tracked objects (teleop/follower/object_pose/<body>). Readers only: the view writes
 // nothing, so a node never waits for it, and its QoS is the nodes' own (best-effort streams: a
 // slow view drops samples, never holds a writer back). Polled from the drawing thread.
@@ -35,9 +36,10 @@ class BusLayers {
 
   /// Whether every arm of `layer` has been posed (a layer not read counts as posed).
   bool complete(Layer layer) const;
-  /// One line per topic: samples so far, the newest's age, joint-count mismatches.
+  /// One line per topic (topic, a tab, its state): the newest sample's number and age, samples
+  /// with the wrong joint count.
   std::string status(int64_t now_ns) const;
-  /// The topics of `layer` that have not delivered yet, comma-separated ("" when none).
+  /// The topics of `layer` whose arms have not been posed yet, comma-separated ("" when none).
   std::string missing(Layer layer) const;
 
  private:

@@ -37,6 +37,8 @@ struct RenderOptions {
   bool contacts = true;
   bool overlay = true;
   bool shadows = true;
+  /// Multisamples per pixel (anti-aliasing); software OpenGL pays for each: 0 draws 1.4-1.6x faster.
+  int samples = 4;
 };
 
 struct RenderResult {

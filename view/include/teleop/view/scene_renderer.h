@@ -37,8 +37,10 @@ struct ForceArrow {
 
 class SceneRenderer {
  public:
-  /// `offscreen_width` x `offscreen_height` (0: the model's own) is the offscreen buffer's size.
-  SceneRenderer(PosedScene& scene, int offscreen_width = 0, int offscreen_height = 0);
+  /// `offscreen_width` x `offscreen_height` (0: the model's own) is the offscreen buffer's size,
+  /// `offscreen_samples` its multisampling (< 0: the model's own, MuJoCo's default 4; software
+  /// OpenGL pays for each sample).
+  SceneRenderer(PosedScene& scene, int offscreen_width = 0, int offscreen_height = 0, int offscreen_samples = -1);
   ~SceneRenderer();
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;
