@@ -47,6 +47,8 @@ TEST(PosedScene, GhostsAreTheBodiesTheArmsMove) {
   EXPECT_TRUE(scene.moved_by_arms(mj_name2id(m, mjOBJ_BODY, "link7")));
   EXPECT_TRUE(scene.moved_by_arms(mj_name2id(m, mjOBJ_BODY, "link1")));
   EXPECT_TRUE(scene.free_bodies().empty());
+  EXPECT_EQ(scene.ee_site(0), mj_name2id(m, mjOBJ_SITE, "ee_site"));
+  EXPECT_GE(scene.ee_site(0), 0);
 }
 
 TEST(PosedScene, TheBoxTaskHasTwoArmsAndAFreeBox) {
@@ -60,6 +62,10 @@ TEST(PosedScene, TheBoxTaskHasTwoArmsAndAFreeBox) {
   EXPECT_FALSE(scene.moved_by_arms(scene.free_bodies()[0].body));
   EXPECT_TRUE(scene.moved_by_arms(mj_name2id(m, mjOBJ_BODY, "left_link7")));
   EXPECT_TRUE(scene.moved_by_arms(mj_name2id(m, mjOBJ_BODY, "right_link7")));
+  EXPECT_EQ(scene.ee_site(1), mj_name2id(m, mjOBJ_SITE, "right_ee_site"));
+  // the twin's config names no sites: <prefix>ee_site
+  PosedScene twin(spec("twin_box_task.yaml"));
+  EXPECT_EQ(twin.ee_site(0), mj_name2id(twin.model(), mjOBJ_SITE, "left_ee_site"));
 
   // the right arm's joints are its own
   const std::array<double, 7> q{0.5, 0.5, 0.5, -2.0, 0.5, 2.5, 0.5};

@@ -20,6 +20,7 @@ TEST(ViewModel, TheFollowerShowsItsSimulatedWorld) {
   ASSERT_EQ(s.arms.size(), 1u);
   EXPECT_EQ(s.arms[0].name, "");
   EXPECT_EQ(s.arms[0].joint_prefix, "");
+  EXPECT_EQ(s.arms[0].ee_site, "ee_site");
 }
 
 TEST(ViewModel, TheBoxTasksFollowerHasTwoArmsOnTheirPrefixes) {
@@ -31,6 +32,8 @@ TEST(ViewModel, TheBoxTasksFollowerHasTwoArmsOnTheirPrefixes) {
   EXPECT_EQ(s.arms[0].joint_prefix, "left_");
   EXPECT_EQ(s.arms[1].name, "right");
   EXPECT_EQ(s.arms[1].joint_prefix, "right_");
+  EXPECT_EQ(s.arms[0].ee_site, "left_ee_site");
+  EXPECT_EQ(s.arms[1].ee_site, "right_ee_site");
 }
 
 TEST(ViewModel, TheTwinShowsItsOwnModel) {

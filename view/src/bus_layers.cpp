@@ -2,6 +2,8 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include <algorithm>
+
 #include "teleop/transport/arm_topic.h"
 #include "teleop/transport/joint_fields.h"
 #include "teleop/transport/topics.h"
@@ -35,6 +37,16 @@ struct BusLayers::ObjectFeed {
   uint64_t last_seq = 0;
 };
 
+struct BusLayers::WrenchFeed {
+  size_t arm = 0;
+  std::string topic;
+  transport::Reader<msg::WrenchStamped> reader;
+  msg::WrenchStamped sample;
+  uint64_t received = 0;
+  int64_t last_ns = 0;
+  uint64_t last_seq = 0;
+};
+
 BusLayers::BusLayers(transport::Participant& participant, const PosedScene& scene, LayerChoice choice) {
   auto add = [&](Layer layer, size_t arm, const std::string& topic) -> ArmFeed& {
     arms_.push_back(std::make_unique<ArmFeed>());
@@ -49,6 +61,13 @@ BusLayers::BusLayers(transport::Participant& participant, const PosedScene& scen
     {
       const auto topic = transport::arm_topic(transport::topics::kFollowerState, arm);
       add(Layer::kFollower, a, topic.name()).state = participant.make_reader<msg::JointState>(topic);
+    }
+    if (scene.ee_site(a) >= 0) {
+      const auto topic = transport::arm_topic(transport::topics::kFollowerWrench, arm);
+      wrenches_.push_back(std::make_unique<WrenchFeed>());
+      wrenches_.back()->arm = a;
+      wrenches_.back()->topic = topic.name();
+      wrenches_.back()->reader = participant.make_reader<msg::WrenchStamped>(topic);
     }
     if (choice.twin) {
       const auto topic = transport::arm_topic(transport::topics::kTwinState, arm);
@@ -112,6 +131,13 @@ bool BusLayers::update(PosedScene& scene) {
     f->posed = f->posed || ok;
     posed = posed || ok;
   }
+  for (auto& w : wrenches_) {
+    while (w->reader.take_next(w->sample)) {
+      ++w->received;
+      w->last_ns = w->sample.header().stamp_ns();
+      w->last_seq = w->sample.header().seq();
+    }
+  }
   for (auto& o : objects_) {
     bool fresh = false;
     while (o->reader.take_next(o->sample)) {
@@ -129,6 +155,20 @@ bool BusLayers::update(PosedScene& scene) {
     posed = true;
   }
   return posed;
+}
+
+std::vector<ForceArrow> BusLayers::forces(PosedScene& scene) const {
+  std::vector<ForceArrow> out;
+  if (!scene.posed(Layer::kFollower)) return out;
+  const mjData* d = scene.data(Layer::kFollower);
+  for (const auto& w : wrenches_) {
+    if (w->received == 0) continue;
+    ForceArrow a;
+    std::copy_n(d->site_xpos + 3 * scene.ee_site(w->arm), 3, a.from.begin());
+    transport::read_vector3(w->sample.force_n(), a.force.data());
+    out.push_back(a);
+  }
+  return out;
 }
 
 bool BusLayers::complete(Layer layer) const {
@@ -169,6 +209,7 @@ std::string BusLayers::status(int64_t now_ns) const {
     out += (out.empty() ? "" : "\n") + topic + "\t" + state;
   };
   for (const auto& f : arms_) line(f->topic, f->received, f->last_ns, f->last_seq, f->mismatched);
+  for (const auto& w : wrenches_) line(w->topic, w->received, w->last_ns, w->last_seq, 0);
   for (const auto& o : objects_) line(o->topic, o->received, o->last_ns, o->last_seq, 0);
   return out;
 }

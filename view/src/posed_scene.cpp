@@ -23,6 +23,8 @@ PosedScene::PosedScene(const ViewModelSpec& spec) : spec_(spec), sim_(sim::Mujoc
   moved_by_arms_.assign(static_cast<size_t>(m->nbody), false);
   for (const ViewArm& arm : spec_.arms) {
     joints_.push_back(sim::find_actuated_joints(m, spec_.model_path, arm.joint_prefix));
+    const std::string site = arm.ee_site.empty() ? arm.joint_prefix + "ee_site" : arm.ee_site;
+    ee_sites_.push_back(mj_name2id(m, mjOBJ_SITE, site.c_str()));
     const sim::ActuatedJoints& j = joints_.back();
     for (size_t i = 0; i < j.count; ++i) {
       moved_by_arms_[static_cast<size_t>(m->jnt_bodyid[m->dof_jntid[j.dof[i]]])] = true;

@@ -78,7 +78,8 @@ void SceneRenderer::compose() {
   mjv_updateScene(m, posed_->data(Layer::kFollower), &option_, &perturb_, &camera_, categories, &scene_);
   if (settings_.layers[1] && posed_->posed(Layer::kTwin)) add_ghost(Layer::kTwin, settings_.twin_rgba);
   if (settings_.layers[2] && posed_->posed(Layer::kLeader)) add_ghost(Layer::kLeader, settings_.leader_rgba);
-  add_arrows();
+  // the forces belong with the contacts: C hides both
+  if (settings_.contacts) add_arrows();
   scene_.stereo = settings_.stereo ? mjSTEREO_SIDEBYSIDE : mjSTEREO_NONE;
   scene_.flags[mjRND_SHADOW] = settings_.shadows ? 1 : 0;
   scene_.flags[mjRND_REFLECTION] = settings_.reflections ? 1 : 0;

@@ -10,10 +10,15 @@ std::vector<ViewArm> read_arms(const ConfigNode& section) {
   std::vector<ViewArm> arms;
   if (const auto named = section.optional_child("arms")) {
     for (const std::string& name : named->keys()) {
-      arms.push_back({name, named->child(name).get_string("joint_prefix")});
+      const ConfigNode arm = named->child(name);
+      arms.push_back({name, arm.get_string("joint_prefix"), arm.get_string("ee_site", "")});
     }
   }
-  if (arms.empty()) arms.push_back({"", ""});
+  if (arms.empty()) {
+    // a one-arm follower names its flange in follower.control (default ee_site)
+    const auto control = section.optional_child("control");
+    arms.push_back({"", "", control ? control->get_string("ee_site", "") : ""});
+  }
   return arms;
 }
 

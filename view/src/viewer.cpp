@@ -20,7 +20,9 @@
 namespace teleop::view {
 namespace {
 
-std::array<Layer, 3> kLayers{Layer::kFollower, Layer::kTwin, Layer::kLeader};
+const std::array<Layer, 3> kLayers{Layer::kFollower, Layer::kTwin, Layer::kLeader};
+// the external force's arrow: 1 cm per N (as teleop render's)
+constexpr double kMetresPerNewton = 0.01;
 
 bool layer_read(Layer layer, const LayerChoice& choice) {
   return layer == Layer::kFollower || (layer == Layer::kTwin && choice.twin) || (layer == Layer::kLeader && choice.leader);
@@ -74,6 +76,7 @@ int run_view(const ViewOptions& options, FILE* out) {
     if (!input.frozen() || input.take_step()) {
       bus.update(scene);
       scene.update();
+      renderer.set_arrows(bus.forces(scene), kMetresPerNewton);
     }
     const int64_t now_ns = monotonic_now_ns();
     bool ready = true;

@@ -3,7 +3,8 @@
 // (teleop/follower/joint_state[/arm]), the twin's state (teleop/twin/joint_state[/arm]) and
 // optionally the leader's command (teleop/leader/joint_command[/arm], its desired positions, or
 // under MMT the device's teleop/leader/joint_state[/arm] that commands the twin); the
-// follower's tracked objects (teleop/follower/object_pose/<body>). Readers only: the view writes
+// follower's tracked objects (teleop/follower/object_pose/<body>) and its estimated external
+// wrench (teleop/follower/wrench[/arm], drawn as an arrow at the flange). Readers only: the view writes
 // nothing, so a node never waits for it, and its QoS is the nodes' own (best-effort streams: a
 // slow view drops samples, never holds a writer back). Polled from the drawing thread.
 
@@ -14,6 +15,7 @@
 
 #include "teleop/transport/participant.h"
 #include "teleop/view/posed_scene.h"
+#include "teleop/view/scene_renderer.h"
 
 namespace teleop::view {
 
@@ -34,6 +36,10 @@ class BusLayers {
   /// when anything was posed.
   bool update(PosedScene& scene);
 
+  /// The follower's newest external force of each arm that has one, at its flange in the
+  /// follower's layer (the wrench's frame, the robot's base, taken as the world's).
+  std::vector<ForceArrow> forces(PosedScene& scene) const;
+
   /// Whether every arm of `layer` has been posed (a layer not read counts as posed).
   bool complete(Layer layer) const;
   /// One line per topic (topic, a tab, its state): the newest sample's number and age, samples
@@ -45,8 +51,10 @@ class BusLayers {
  private:
   struct ArmFeed;
   struct ObjectFeed;
+  struct WrenchFeed;
   std::vector<std::unique_ptr<ArmFeed>> arms_;
   std::vector<std::unique_ptr<ObjectFeed>> objects_;
+  std::vector<std::unique_ptr<WrenchFeed>> wrenches_;
 };
 
 }  // namespace teleop::view

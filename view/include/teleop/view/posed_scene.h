@@ -48,6 +48,8 @@ class PosedScene {
   size_t arm_count() const { return spec_.arms.size(); }
   const ViewArm& arm(size_t i) const { return spec_.arms[i]; }
   size_t joint_count(size_t arm) const { return joints_[arm].count; }
+  /// The arm's flange site (-1: the model has none of its name).
+  int ee_site(size_t arm) const { return ee_sites_[arm]; }
   const std::vector<FreeBody>& free_bodies() const { return free_bodies_; }
 
   /// Poses `arm`'s joints in `layer` from `n` positions, and optionally velocities and the joint
@@ -80,6 +82,7 @@ class PosedScene {
   sim::MujocoModel sim_;
   int keyframe_ = -1;
   std::vector<sim::ActuatedJoints> joints_;
+  std::vector<int> ee_sites_;
   std::vector<FreeBody> free_bodies_;
   std::vector<bool> moved_by_arms_;
   std::array<mjData*, kLayerCount> data_{};

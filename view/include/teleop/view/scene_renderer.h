@@ -59,7 +59,8 @@ class SceneRenderer {
   /// The free camera with this azimuth and elevation [deg] and distance [m] (<= 0: keep).
   void orbit(double azimuth_deg, double elevation_deg, double distance_m);
 
-  /// Arrows drawn with every frame from now on (e.g. a trace's external force at the flange).
+  /// Arrows drawn with every frame from now on while contacts are shown (the external force at
+  /// a flange).
   void set_arrows(std::vector<ForceArrow> arrows, double m_per_n);
 
   /// Draws into the window (false) or the offscreen buffer (true); the offscreen buffer's size.

@@ -7,11 +7,13 @@
 
 namespace teleop::view {
 
-/// One arm of the scene: its name ("" for a one-arm robot: the plain topic names) and the prefix
-/// of its joints in the model ("left_"; "" for every actuated hinge joint).
+/// One arm of the scene: its name ("" for a one-arm robot: the plain topic names), the prefix
+/// of its joints in the model ("left_"; "" for every actuated hinge joint) and its flange site,
+/// where its external wrench acts ("": <prefix>ee_site when the model has it).
 struct ViewArm {
   std::string name;
   std::string joint_prefix;
+  std::string ee_site;
 };
 
 struct ViewModelSpec {
