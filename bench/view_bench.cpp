@@ -97,8 +97,10 @@ int main(int argc, char** argv) {
       PosedScene scene(read_view_model(std::string(TELEOP_SOURCE_DIR) + "/config/nodes/" + node));
       for (bool offscreen : {false, true}) {
         const double fps = measure(scene, offscreen, frames, width, height, shadows, samples);
-        std::printf("%-34s %-10s %10.1f %10.1f\n", (std::string(node) + " (" + std::to_string(scene.arm_count()) + " arm" +
-                                                    (scene.arm_count() > 1 ? "s)" : ")")).c_str(),
+        std::printf("%-34s %-10s %10.1f %10.1f\n",
+                    (std::string(node) + " (" + std::to_string(scene.arm_count()) + " arm" +
+                     (scene.arm_count() > 1 ? "s)" : ")"))
+                        .c_str(),
                     offscreen ? "offscreen" : "window", fps, 1000.0 / fps);
         std::fflush(stdout);
       }

@@ -24,8 +24,9 @@ ViewCommands::ViewCommands(CLI::App& app) {
 
 void ViewCommands::add_view(CLI::App& app) {
   view_ = app.add_subcommand(
-      "view", "a window with the 3D scene of a node's config posed live from the bus: the follower solid, the twin "
-              "(and the leader's command) as ghosts, contacts and their forces (docs/view.md)");
+      "view",
+      "a window with the 3D scene of a node's config posed live from the bus: the follower solid, the twin "
+      "(and the leader's command) as ghosts, contacts and their forces (docs/view.md)");
   view::ViewOptions& o = view_options_;
   view_
       ->add_option("-c,--config", o.config_path,
@@ -35,7 +36,9 @@ void ViewCommands::add_view(CLI::App& app) {
       ->check(CLI::ExistingFile);
   view_->add_option("--domain", o.domain_id, "DDS domain id (overrides the config)")->check(CLI::Range(0, 232));
   view_->add_flag("--no-twin", no_twin_, "no ghost of the twin (teleop/twin/joint_state)");
-  view_->add_flag("--leader", o.layers.leader, "a ghost of the leader's command (teleop/leader/joint_command)");
+  view_->add_flag("--leader", o.layers.leader,
+                  "a ghost of the leader's command (teleop/leader/joint_command; under MMT its device state, "
+                  "teleop/leader/joint_state)");
   view_->add_flag("--no-contacts", no_contacts_, "no contact points and forces");
   view_->add_flag("--no-shadows", no_shadows_, "no shadows (faster on software OpenGL)");
   view_->add_flag("--no-overlay", no_overlay_, "no text over the picture");
@@ -60,8 +63,9 @@ void ViewCommands::add_view(CLI::App& app) {
 
 void ViewCommands::add_render(CLI::App& app) {
   render_ = app.add_subcommand(
-      "render", "a video (MP4) or PNG frames of a recorded run from its traces, offscreen, with the run's time "
-                "(docs/view.md)");
+      "render",
+      "a video (MP4) or PNG frames of a recorded run from its traces, offscreen, with the run's time "
+      "(docs/view.md)");
   view::RenderOptions& o = render_options_;
   render_
       ->add_option("run_dir", o.run_dir,
@@ -90,7 +94,8 @@ void ViewCommands::add_render(CLI::App& app) {
   render_->add_option("--from", o.start_s, "start at this run time [s]")->check(CLI::NonNegativeNumber);
   render_->add_option("--to", o.end_s, "end at this run time [s] (default: the end)")->check(CLI::NonNegativeNumber);
   render_->add_flag("--no-twin", no_twin_, "no ghost of the twin");
-  render_->add_flag("--leader", o.leader, "a ghost of the leader's positions (leader.csv, same joints as the follower)");
+  render_->add_flag("--leader", o.leader,
+                    "a ghost of the leader's positions (leader.csv, same joints as the follower)");
   render_->add_flag("--no-contacts", no_contacts_, "no contact points and no external-force arrows");
   render_->add_flag("--no-shadows", no_shadows_, "no shadows (faster)");
   render_->add_option("--samples", o.samples, "multisamples per pixel, anti-aliasing (default 4; 0 is faster)")
@@ -99,9 +104,10 @@ void ViewCommands::add_render(CLI::App& app) {
 }
 
 void ViewCommands::add_experiment_option(CLI::App* experiment) {
-  experiment->add_flag("--render", experiment_render_,
-                       "also a video of each run (<run>/<profile>/run.mp4 and run.png, `teleop render`; needs a display "
-                       "or Xvfb)");
+  experiment->add_flag(
+      "--render", experiment_render_,
+      "also a video of each run (<run>/<profile>/run.mp4 and run.png, `teleop render`; needs a display "
+      "or Xvfb)");
 }
 
 int ViewCommands::render_experiment(const std::string& report_dir) const {
@@ -109,7 +115,8 @@ int ViewCommands::render_experiment(const std::string& report_dir) const {
   int failed = 0;
   std::vector<fs::path> runs;
   for (const auto& entry : fs::recursive_directory_iterator(report_dir)) {
-    if (entry.is_regular_file() && entry.path().filename() == "follower.csv") runs.push_back(entry.path().parent_path());
+    if (entry.is_regular_file() && entry.path().filename() == "follower.csv")
+      runs.push_back(entry.path().parent_path());
   }
   std::sort(runs.begin(), runs.end());
   for (const fs::path& dir : runs) {

@@ -83,8 +83,20 @@ class ViewProcessTest : public ::testing::Test {
   // `teleop view` on the follower's scene, small and without text, `frames` frames once every
   // shown topic delivered; the last one as `png`
   ProcessResult view(const std::string& png, std::vector<std::string> extra = {}) const {
-    std::vector<std::string> args = {"view", "-c", source("config/nodes/follower.yaml"), "--no-overlay", "--width",
-                                     "320", "--height", "240", "--frames", "3", "--wait", "20", "--screenshot", dir + "/" + png};
+    std::vector<std::string> args = {"view",
+                                     "-c",
+                                     source("config/nodes/follower.yaml"),
+                                     "--no-overlay",
+                                     "--width",
+                                     "320",
+                                     "--height",
+                                     "240",
+                                     "--frames",
+                                     "3",
+                                     "--wait",
+                                     "20",
+                                     "--screenshot",
+                                     dir + "/" + png};
     args.insert(args.end(), extra.begin(), extra.end());
     return run_process(tool(args, domain), 60s);
   }
@@ -146,10 +158,10 @@ class StatePublisher {
 
 TEST_F(ViewProcessTest, TheWindowShowsTheDemosFollowerAndTwinWhereTheCameraLooks) {
   // the scene before anyone is measured: the wall, no robot
-  const ProcessResult empty = run_process(
-      tool({"view", "--no-overlay", "--width", "320", "--height", "240", "--frames", "3", "--screenshot", dir + "/empty.png"},
-           domain),
-      60s);
+  const ProcessResult empty = run_process(tool({"view", "--no-overlay", "--width", "320", "--height", "240", "--frames",
+                                                "3", "--screenshot", dir + "/empty.png"},
+                                               domain),
+                                          60s);
   ASSERT_EQ(empty.exit_status, 0) << empty.output;
   EXPECT_NE(empty.output.find("teleop view: scene_wall.xml"), std::string::npos) << empty.output;
 
@@ -224,31 +236,31 @@ TEST(ViewWithoutDisplayTest, SaysThereIsNoDisplayAndExits1) {
 
 // a short stiff-wall run (MMT: follower, twin, leader's haptic arm) rendered from its traces
 TEST_F(ViewProcessTest, RenderMakesAPlayableMp4OfAStiffWallRun) {
-  const ProcessResult run = run_process({bin("teleop"), "experiment", source("config/experiments/stiff_wall.yaml"),
-                                         "--runs", "mmt", "--profiles", "none", "--duration", "3", "--no-plots",
-                                         "--report-dir", dir, "--domain", std::to_string(domain)},
-                                        90s);
+  const ProcessResult run = run_process(
+      {bin("teleop"), "experiment", source("config/experiments/stiff_wall.yaml"), "--runs", "mmt", "--profiles", "none",
+       "--duration", "3", "--no-plots", "--report-dir", dir, "--domain", std::to_string(domain)},
+      90s);
   ASSERT_EQ(run.exit_status, 0) << run.output;
   const std::string run_dir = dir + "/mmt/none";
-  const ProcessResult render =
-      run_process({bin("teleop"), "render", run_dir, "-o", dir + "/clip.mp4", "--width", "320", "--height", "240",
-                   "--fps", "10", "--still", dir + "/still.png"},
-                  120s);
+  const ProcessResult render = run_process({bin("teleop"), "render", run_dir, "-o", dir + "/clip.mp4", "--width", "320",
+                                            "--height", "240", "--fps", "10", "--still", dir + "/still.png"},
+                                           120s);
   ASSERT_EQ(render.exit_status, 0) << render.output;
   EXPECT_NE(render.output.find("(follower.csv, twin.csv)"), std::string::npos) << render.output;
   std::smatch m;
-  ASSERT_TRUE(std::regex_search(render.output, m, std::regex(R"(teleop render: (\d+) frames \(([0-9.]+) s of the run\))")))
+  ASSERT_TRUE(
+      std::regex_search(render.output, m, std::regex(R"(teleop render: (\d+) frames \(([0-9.]+) s of the run\))")))
       << render.output;
   const int frames = std::stoi(m[1]);
   const double run_s = std::stod(m[2]);
   EXPECT_NEAR(run_s, 3.0, 0.5) << render.output;
   EXPECT_EQ(frames, static_cast<int>(run_s * 10 + 1e-9) + 1) << render.output;
 
-  const ProcessResult probe = run_process({in_path("ffprobe"), "-v", "error", "-count_frames", "-select_streams", "v:0",
-                                           "-show_entries", "stream=codec_name,width,height,nb_read_frames",
-                                           "-show_entries", "format=duration", "-of", "default=noprint_wrappers=1",
-                                           dir + "/clip.mp4"},
-                                          30s);
+  const ProcessResult probe =
+      run_process({in_path("ffprobe"), "-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries",
+                   "stream=codec_name,width,height,nb_read_frames", "-show_entries", "format=duration", "-of",
+                   "default=noprint_wrappers=1", dir + "/clip.mp4"},
+                  30s);
   ASSERT_EQ(probe.exit_status, 0) << probe.output;
   EXPECT_NE(probe.output.find("codec_name=h264"), std::string::npos) << probe.output;
   EXPECT_NE(probe.output.find("width=320\nheight=240"), std::string::npos) << probe.output;

@@ -202,9 +202,11 @@ std::string BusLayers::status(int64_t now_ns) const {
   std::string out;
   // the newest sample's number and age (the streams keep only the newest: what a frame takes is
   // not what was sent)
-  auto line = [&](const std::string& topic, uint64_t received, int64_t last_ns, uint64_t last_seq, uint64_t mismatched) {
-    std::string state = received == 0 ? std::string("no data yet")
-                                       : fmt::format("seq {}, {:.0f} ms old", last_seq, static_cast<double>(now_ns - last_ns) * 1e-6);
+  auto line = [&](const std::string& topic, uint64_t received, int64_t last_ns, uint64_t last_seq,
+                  uint64_t mismatched) {
+    std::string state =
+        received == 0 ? std::string("no data yet")
+                      : fmt::format("seq {}, {:.0f} ms old", last_seq, static_cast<double>(now_ns - last_ns) * 1e-6);
     if (mismatched > 0) state += fmt::format(", {} with the wrong joint count", mismatched);
     out += (out.empty() ? "" : "\n") + topic + "\t" + state;
   };

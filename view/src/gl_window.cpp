@@ -14,11 +14,14 @@ std::string& last_glfw_error() {
   return text;
 }
 
-void on_glfw_error(int /*code*/, const char* description) { last_glfw_error() = description != nullptr ? description : ""; }
+void on_glfw_error(int /*code*/, const char* description) {
+  last_glfw_error() = description != nullptr ? description : "";
+}
 
 std::string display_hint() {
   const char* display = std::getenv("DISPLAY");
-  const std::string where = display != nullptr && *display != '\0' ? std::string("DISPLAY=") + display : "DISPLAY is not set";
+  const std::string where =
+      display != nullptr && *display != '\0' ? std::string("DISPLAY=") + display : "DISPLAY is not set";
   return where +
          "; on a machine without a screen run it under a virtual one (`xvfb-run -a teleop ...`), or from "
          "another host with `ssh -X` (docs/view.md)";

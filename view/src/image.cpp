@@ -40,7 +40,8 @@ bool encode(png_structp png, png_infop info, FILE* file, const Image& image) {
   return true;
 }
 
-bool read_header(png_structp png, png_infop info, FILE* file, png_uint_32* width, png_uint_32* height, size_t* row_bytes) {
+bool read_header(png_structp png, png_infop info, FILE* file, png_uint_32* width, png_uint_32* height,
+                 size_t* row_bytes) {
   if (setjmp(png_jmpbuf(png)) != 0) return false;
   png_init_io(png, file);
   png_read_info(png, info);

@@ -54,7 +54,8 @@ RenderResult render_run(const RenderOptions& options, FILE* log) {
   const RunPlayback playback(options.run_dir, scene, options.twin, options.leader);
   result.sources = playback.sources();
   const double start = std::clamp(options.start_s, 0.0, playback.duration_s());
-  const double end = std::isnan(options.end_s) ? playback.duration_s() : std::clamp(options.end_s, start, playback.duration_s());
+  const double end =
+      std::isnan(options.end_s) ? playback.duration_s() : std::clamp(options.end_s, start, playback.duration_s());
   const double step = options.speed / options.fps;
   const int frames = static_cast<int>(std::floor((end - start) / step + 1e-9)) + 1;
   result.output = options.output.empty() ? (fs::path(options.run_dir) / "run.mp4").string() : options.output;
@@ -65,9 +66,9 @@ RenderResult render_run(const RenderOptions& options, FILE* log) {
   renderer.use_offscreen(true);
   const mjrRect rect{0, 0, options.width, options.height};
   if (renderer.offscreen_rect().width < options.width || renderer.offscreen_rect().height < options.height) {
-    throw std::runtime_error(fmt::format("the offscreen buffer is {}x{}, smaller than the {}x{} asked for (the OpenGL's limit)",
-                                         renderer.offscreen_rect().width, renderer.offscreen_rect().height,
-                                         options.width, options.height));
+    throw std::runtime_error(
+        fmt::format("the offscreen buffer is {}x{}, smaller than the {}x{} asked for (the OpenGL's limit)",
+                    renderer.offscreen_rect().width, renderer.offscreen_rect().height, options.width, options.height));
   }
   RenderSettings& settings = renderer.settings();
   // the traces carry positions only: contact points are right, MuJoCo's contact forces would not
@@ -118,7 +119,8 @@ RenderResult render_run(const RenderOptions& options, FILE* log) {
   }
   if (video) video->finish();
   if (!options.still.empty()) {
-    const double at = std::isnan(options.still_at_s) ? 0.5 * (start + end) : std::clamp(options.still_at_s, 0.0, playback.duration_s());
+    const double at = std::isnan(options.still_at_s) ? 0.5 * (start + end)
+                                                     : std::clamp(options.still_at_s, 0.0, playback.duration_s());
     write_png(draw(at), options.still);
     result.still = options.still;
   }

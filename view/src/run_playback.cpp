@@ -38,15 +38,17 @@ RunPlayback::Series RunPlayback::read_series(const std::string& path, Layer laye
     }
     const std::string p = arm_prefix(scene.arm(a).name);
     if (layer == Layer::kFollower && s.trace.has(p + "f_ext_x") && s.trace.has(p + "x_x")) {
-      s.forces.push_back({{&s.trace.column(p + "x_x"), &s.trace.column(p + "x_y"), &s.trace.column(p + "x_z")},
-                          {&s.trace.column(p + "f_ext_x"), &s.trace.column(p + "f_ext_y"), &s.trace.column(p + "f_ext_z")}});
+      s.forces.push_back(
+          {{&s.trace.column(p + "x_x"), &s.trace.column(p + "x_y"), &s.trace.column(p + "x_z")},
+           {&s.trace.column(p + "f_ext_x"), &s.trace.column(p + "f_ext_y"), &s.trace.column(p + "f_ext_z")}});
     }
   }
   if (layer == Layer::kFollower) {
     for (size_t b = 0; b < scene.free_bodies().size(); ++b) {
       const std::string& name = scene.free_bodies()[b].name;
       if (!s.trace.has(name + "_x") || !s.trace.has(name + "_y") || !s.trace.has(name + "_z")) continue;
-      s.bodies.push_back({b, {&s.trace.column(name + "_x"), &s.trace.column(name + "_y"), &s.trace.column(name + "_z")}});
+      s.bodies.push_back(
+          {b, {&s.trace.column(name + "_x"), &s.trace.column(name + "_y"), &s.trace.column(name + "_z")}});
     }
   }
   s.time_s = clock_of(s.trace);
@@ -55,7 +57,8 @@ RunPlayback::Series RunPlayback::read_series(const std::string& path, Layer laye
 
 RunPlayback::RunPlayback(const std::string& run_dir, const PosedScene& scene, bool twin, bool leader) {
   series_.push_back(read_series((fs::path(run_dir) / "follower.csv").string(), Layer::kFollower, scene, true));
-  for (const auto& [wanted, layer, file] : {std::tuple{twin, Layer::kTwin, "twin.csv"}, std::tuple{leader, Layer::kLeader, "leader.csv"}}) {
+  for (const auto& [wanted, layer, file] :
+       {std::tuple{twin, Layer::kTwin, "twin.csv"}, std::tuple{leader, Layer::kLeader, "leader.csv"}}) {
     const fs::path path = fs::path(run_dir) / file;
     if (!wanted || !fs::exists(path)) continue;
     Series s = read_series(path.string(), layer, scene, false);

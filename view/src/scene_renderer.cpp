@@ -64,7 +64,9 @@ void SceneRenderer::orbit(double azimuth_deg, double elevation_deg, double dista
   if (distance_m > 0) camera_.distance = distance_m;
 }
 
-void SceneRenderer::use_offscreen(bool offscreen) { mjr_setBuffer(offscreen ? mjFB_OFFSCREEN : mjFB_WINDOW, &context_); }
+void SceneRenderer::use_offscreen(bool offscreen) {
+  mjr_setBuffer(offscreen ? mjFB_OFFSCREEN : mjFB_WINDOW, &context_);
+}
 
 mjrRect SceneRenderer::offscreen_rect() const { return {0, 0, context_.offWidth, context_.offHeight}; }
 
@@ -121,7 +123,8 @@ void SceneRenderer::add_arrows() {
   // as thick as MuJoCo draws contact forces, in the colour of its force arrows
   const double width = m->vis.scale.forcewidth * m->stat.meansize;
   for (const ForceArrow& a : arrows_) {
-    const double length = std::sqrt(a.force[0] * a.force[0] + a.force[1] * a.force[1] + a.force[2] * a.force[2]) * m_per_n_;
+    const double length =
+        std::sqrt(a.force[0] * a.force[0] + a.force[1] * a.force[1] + a.force[2] * a.force[2]) * m_per_n_;
     if (scene_.ngeom >= scene_.maxgeom || length < 1e-4 || !std::isfinite(length)) continue;
     mjvGeom* g = scene_.geoms + scene_.ngeom++;
     mjv_initGeom(g, mjGEOM_ARROW, nullptr, nullptr, nullptr, m->vis.rgba.contactforce);

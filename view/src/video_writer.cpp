@@ -50,9 +50,10 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, double 
   const std::string size = std::to_string(width) + "x" + std::to_string(height);
   char rate[32];
   std::snprintf(rate, sizeof rate, "%g", fps);
-  std::vector<std::string> args = {"ffmpeg", "-nostdin", "-y", "-loglevel", "error", "-f", "rawvideo", "-pix_fmt",
-                                   "rgb24", "-s", size, "-r", rate, "-i", "-", "-an", "-c:v", "libx264", "-preset",
-                                   "veryfast", "-crf", "26", "-pix_fmt", "yuv420p", "-movflags", "+faststart", path};
+  std::vector<std::string> args = {"ffmpeg",   "-nostdin", "-y",      "-loglevel", "error",      "-f",       "rawvideo",
+                                   "-pix_fmt", "rgb24",    "-s",      size,        "-r",         rate,       "-i",
+                                   "-",        "-an",      "-c:v",    "libx264",   "-preset",    "veryfast", "-crf",
+                                   "26",       "-pix_fmt", "yuv420p", "-movflags", "+faststart", path};
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);

@@ -29,8 +29,10 @@ ViewInput::ViewInput(GlWindow& window, SceneRenderer& renderer, const mjModel* m
     : window_(&window), renderer_(&renderer), model_(model) {
   GLFWwindow* w = window.handle();
   glfwSetWindowUserPointer(w, this);
-  glfwSetKeyCallback(w, [](GLFWwindow* win, int key, int, int action, int mods) { input_of(win)->on_key(key, action, mods); });
-  glfwSetMouseButtonCallback(w, [](GLFWwindow* win, int button, int action, int) { input_of(win)->on_button(button, action); });
+  glfwSetKeyCallback(
+      w, [](GLFWwindow* win, int key, int, int action, int mods) { input_of(win)->on_key(key, action, mods); });
+  glfwSetMouseButtonCallback(
+      w, [](GLFWwindow* win, int button, int action, int) { input_of(win)->on_button(button, action); });
   glfwSetCursorPosCallback(w, [](GLFWwindow* win, double x, double y) { input_of(win)->on_move(x, y); });
   glfwSetScrollCallback(w, [](GLFWwindow* win, double, double dy) { input_of(win)->on_scroll(dy); });
 }
@@ -104,7 +106,8 @@ void ViewInput::on_move(double x, double y) {
   window_->window_size(width, height);
   if (height <= 0) return;
   GLFWwindow* w = window_->handle();
-  const bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+  const bool shift =
+      glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
   int action = mjMOUSE_ZOOM;
   if (right_) {
     action = shift ? mjMOUSE_MOVE_H : mjMOUSE_MOVE_V;

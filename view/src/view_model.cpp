@@ -48,14 +48,16 @@ ViewModelSpec read_view_model(const std::string& node_config_path) {
     spec.arms = read_arms(*twin);
     return spec;
   }
-  throw root.error("follower", "no follower or twin section: `teleop view` shows the scene of a follower or twin config");
+  throw root.error("follower",
+                   "no follower or twin section: `teleop view` shows the scene of a follower or twin config");
 }
 
 std::string shipped_node_config(const std::string& name) {
   const std::filesystem::path path = find_named_config("nodes", name);
   if (path.empty()) {
     const std::string file = "config/nodes/" + name + ".yaml";
-    throw ConfigError(name + ": no shipped node config, looked in " + data_candidates_text(file, file, DataRoots::current()));
+    throw ConfigError(name + ": no shipped node config, looked in " +
+                      data_candidates_text(file, file, DataRoots::current()));
   }
   return path.string();
 }

@@ -25,7 +25,8 @@ const std::array<Layer, 3> kLayers{Layer::kFollower, Layer::kTwin, Layer::kLeade
 constexpr double kMetresPerNewton = 0.01;
 
 bool layer_read(Layer layer, const LayerChoice& choice) {
-  return layer == Layer::kFollower || (layer == Layer::kTwin && choice.twin) || (layer == Layer::kLeader && choice.leader);
+  return layer == Layer::kFollower || (layer == Layer::kTwin && choice.twin) ||
+         (layer == Layer::kLeader && choice.leader);
 }
 
 }  // namespace
@@ -57,7 +58,9 @@ int run_view(const ViewOptions& options, FILE* out) {
   BusLayers bus(participant, scene, options.layers);
   std::string topics;
   for (Layer l : kLayers) {
-    if (layer_read(l, options.layers)) topics += fmt::format("{}{} ({})", topics.empty() ? "" : ", ", layer_name(l), l == Layer::kFollower ? "solid" : "ghost");
+    if (layer_read(l, options.layers))
+      topics += fmt::format("{}{} ({})", topics.empty() ? "" : ", ", layer_name(l),
+                            l == Layer::kFollower ? "solid" : "ghost");
   }
   std::fprintf(out, "teleop view: %s from %s in domain %d: %s; F1 in the window lists the keys\n", model_name.c_str(),
                scene.spec().source.c_str(), bus_config.domain_id, topics.c_str());
@@ -81,7 +84,8 @@ int run_view(const ViewOptions& options, FILE* out) {
     const int64_t now_ns = monotonic_now_ns();
     bool ready = true;
     for (Layer l : kLayers) ready = ready && (!layer_read(l, options.layers) || bus.complete(l));
-    if (options.frames > 0 && !ready && options.wait_s > 0 && now_ns - start_ns > static_cast<int64_t>(options.wait_s * 1e9)) {
+    if (options.frames > 0 && !ready && options.wait_s > 0 &&
+        now_ns - start_ns > static_cast<int64_t>(options.wait_s * 1e9)) {
       std::string missing;
       for (Layer l : kLayers) {
         if (!layer_read(l, options.layers)) continue;
@@ -125,8 +129,9 @@ int run_view(const ViewOptions& options, FILE* out) {
     }
   }
   const double seconds = static_cast<double>(monotonic_now_ns() - start_ns) * 1e-9;
-  std::fprintf(out, "teleop view: %d frames in %.1f s (%.1f fps)%s\n", drawn, seconds, seconds > 0 ? drawn / seconds : 0.0,
-               options.screenshot.empty() || counted < options.frames ? "" : (", screenshot " + options.screenshot).c_str());
+  std::fprintf(
+      out, "teleop view: %d frames in %.1f s (%.1f fps)%s\n", drawn, seconds, seconds > 0 ? drawn / seconds : 0.0,
+      options.screenshot.empty() || counted < options.frames ? "" : (", screenshot " + options.screenshot).c_str());
   return 0;
 }
 

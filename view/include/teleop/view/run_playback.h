@@ -37,8 +37,8 @@ class RunPlayback {
   struct Series {
     Layer layer;
     std::string file;
-    std::vector<double> time_s;  // since the follower's first row
-    std::vector<std::vector<const std::vector<double>*>> arm_q;  // per arm: its joint columns
+    std::vector<double> time_s;                                                        // since the follower's first row
+    std::vector<std::vector<const std::vector<double>*>> arm_q;                        // per arm: its joint columns
     std::vector<std::pair<size_t, std::array<const std::vector<double>*, 3>>> bodies;  // free body, x y z
     std::vector<std::pair<std::array<const std::vector<double>*, 3>, std::array<const std::vector<double>*, 3>>> forces;
     experiment::Trace trace;
