@@ -16,6 +16,8 @@ demo_packages=(
   libsqlite3-dev
   # figures of runs and experiments (teleop plot, teleop experiment; docs/plots.md)
   python3-matplotlib
+  # the 3D view and videos of runs (teleop view, teleop render; docs/view.md): its window, its PNGs
+  libglfw3-dev libpng-dev
 )
 # the test suite and the benchmarks on top
 test_packages=(
@@ -29,6 +31,9 @@ test_packages=(
   qemu-system-x86 busybox-static cpio
   # libFuzzer target of the CAN frame decoders and the config parsers: clang and its fuzzer runtime
   clang libclang-rt-14-dev
+  # the view's tests (test/integration/view_process_test.cpp): a virtual display with Mesa's software
+  # OpenGL, ffmpeg for teleop render's MP4 and ffprobe to check it; xauth for xvfb-run (docs/view.md)
+  xvfb xauth libgl1-mesa-dri ffmpeg
 )
 
 case "${1:-}" in

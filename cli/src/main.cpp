@@ -3,7 +3,8 @@
 // `teleop reset NODE` clears a node's latched reflex, `teleop plot RUN_DIR` draws a run's figures,
 // `teleop hand-study STUDY.yaml` reproduces the SVH hand study in MuJoCo (hand_study_command.h),
 // `teleop fidelity-study STUDY.yaml` the coupling thesis's twin accuracy study (fidelity_study_command.h);
-// `teleop topic`, `monitor`, `record`, `replay` (bus_commands.h) look at and keep the bus.
+// `teleop topic`, `monitor`, `record`, `replay` (bus_commands.h) look at and keep the bus;
+// `teleop view` shows the robot live, `teleop render RUN_DIR` makes a video of a run (view_command.h).
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -24,6 +25,7 @@
 #include "fidelity_study_command.h"
 #include "hand_study_command.h"
 #include "plot_command.h"
+#include "view_command.h"
 
 int main(int argc, char** argv) {
   using namespace teleop::launcher;
@@ -120,6 +122,8 @@ int main(int argc, char** argv) {
   const teleop::cli::PlotCommand plot(app);
   const teleop::cli::HandStudyCommand hand_study(app);
   const teleop::cli::FidelityStudyCommand fidelity_study(app);
+  teleop::cli::ViewCommands view_commands(app);
+  view_commands.add_experiment_option(experiment_cmd);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -127,6 +131,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (const auto rc = bus_commands.run()) return *rc;
+    if (const auto rc = view_commands.run()) return *rc;
     if (plot.parsed()) return plot.run();
     if (hand_study.parsed()) return hand_study.run();
     if (fidelity_study.parsed()) return fidelity_study.run();
@@ -159,7 +164,9 @@ int main(int argc, char** argv) {
       std::printf("\nresults: %s\ntraces and reports: %s\n", result.csv_path.c_str(), result.report_dir.c_str());
       if (result.failures > 0)
         std::printf("RESULT: FAILED (%d runs failed or could not be analysed, see above)\n", result.failures);
-      return result.failures > 0 ? 1 : 0;
+      const int unrendered = view_commands.render_experiment(result.report_dir);
+      if (unrendered > 0) std::printf("RESULT: FAILED (%d runs could not be rendered, see above)\n", unrendered);
+      return result.failures > 0 || unrendered > 0 ? 1 : 0;
     }
     const Scenario scenario = load_scenario(scenario_path);
     if (sweep_cmd->parsed()) return teleop::experiment::network_sweep(scenario, options, profiles, csv_path).failed_runs == 0 ? 0 : 1;

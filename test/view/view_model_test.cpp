@@ -1,0 +1,57 @@
+#include "teleop/view/view_model.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "teleop/common/config.h"
+
+namespace teleop::view {
+namespace {
+
+std::string config(const std::string& name) { return std::string(TELEOP_SOURCE_DIR) + "/config/nodes/" + name; }
+std::string filename(const std::string& path) { return std::filesystem::path(path).filename().string(); }
+
+TEST(ViewModel, TheFollowerShowsItsSimulatedWorld) {
+  const ViewModelSpec s = read_view_model(config("follower.yaml"));
+  EXPECT_EQ(filename(s.model_path), "scene_wall.xml");
+  EXPECT_TRUE(std::filesystem::exists(s.model_path));
+  EXPECT_EQ(s.keyframe, "facing_wall");
+  ASSERT_EQ(s.arms.size(), 1u);
+  EXPECT_EQ(s.arms[0].name, "");
+  EXPECT_EQ(s.arms[0].joint_prefix, "");
+  EXPECT_EQ(s.arms[0].ee_site, "ee_site");
+}
+
+TEST(ViewModel, TheBoxTasksFollowerHasTwoArmsOnTheirPrefixes) {
+  const ViewModelSpec s = read_view_model(config("follower_box_task.yaml"));
+  EXPECT_EQ(filename(s.model_path), "scene_box_shelf.xml");
+  EXPECT_EQ(s.keyframe, "home");
+  ASSERT_EQ(s.arms.size(), 2u);
+  EXPECT_EQ(s.arms[0].name, "left");
+  EXPECT_EQ(s.arms[0].joint_prefix, "left_");
+  EXPECT_EQ(s.arms[1].name, "right");
+  EXPECT_EQ(s.arms[1].joint_prefix, "right_");
+  EXPECT_EQ(s.arms[0].ee_site, "left_ee_site");
+  EXPECT_EQ(s.arms[1].ee_site, "right_ee_site");
+}
+
+TEST(ViewModel, TheTwinShowsItsOwnModel) {
+  const ViewModelSpec s = read_view_model(config("twin.yaml"));
+  EXPECT_EQ(filename(s.model_path), "scene_wall.xml");
+  EXPECT_EQ(s.keyframe, "facing_wall");
+  EXPECT_EQ(read_view_model(config("twin_box_task.yaml")).arms.size(), 2u);
+}
+
+TEST(ViewModel, AConfigWithoutAFollowerOrTwinIsRefusedNamingTheFile) {
+  try {
+    read_view_model(config("leader.yaml"));
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("leader.yaml"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no follower or twin section"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace teleop::view
