@@ -85,6 +85,7 @@ Trace read_trace(const std::string& path) {
   std::vector<bool> state_column;
   for (const std::string& name : header) state_column.push_back(runtime::is_state_column(name));
   for (int line_no = 2; std::getline(in, line); ++line_no) {
+    if (in.eof()) break;  // no newline: an unfinished row (the writer was killed writing it)
     if (line.empty()) continue;
     const std::vector<std::string> cells = split_cells(line);
     const std::string where = path + ":" + std::to_string(line_no) + ": ";

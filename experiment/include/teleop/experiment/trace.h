@@ -37,7 +37,8 @@ void require_rows(const Trace& trace);
 /// Reads a trace CSV. Empty cells and `nan` read as NaN; a state column (runtime::is_state_column)
 /// reads a state's name (`running`) or number as the msg::NodeState's number. Throws TraceError
 /// when the file cannot be read, has no `t_s` first column, or a row with the wrong number of
-/// cells or a bad number.
+/// cells or a bad number. A last line without its newline is a row its writer did not finish (a
+/// node SIGKILLed mid-write, `--trace-stream`): it is not read, every finished row is.
 Trace read_trace(const std::string& path);
 
 }  // namespace teleop::experiment
