@@ -46,12 +46,25 @@ class DiscoveryNetns : public ::testing::Test {
     return t;
   }
 
+  // The sanitizer build runs the follower's simulated arm at about half real time, so the leader's
+  // scripted motion reaches it at about twice its speed and can trip the joint-velocity reflex
+  // (seen once under ASan: 1.44x the threshold, safe hold to the end). The reflex is ReflexProcess's
+  // subject; here it is off in that build only, so that the test's subject (discovery, flow,
+  // recovery) is what decides. On a real arm the plant keeps real time whatever the controller does.
+  static ConfigEdit follower_edit() {
+#ifdef TELEOP_SANITIZED
+    return [](YAML::Node& root) { root["follower"]["reflex"] = "off"; };
+#else
+    return {};
+#endif
+  }
+
   // starts follower and twin, then the leader; cuts and restores the follower's link; stops all
   // three together (so that none sees the others leave) and checks they exit cleanly
   void run_scenario(const std::function<YAML::Node(int host)>& transport) {
     // --duration only as a backstop: the test stops the nodes
     const double backstop_s = kRunS + 20;
-    nodes_->start("follower", kFollowerHost, transport(kFollowerHost), backstop_s);
+    nodes_->start("follower", kFollowerHost, transport(kFollowerHost), backstop_s, follower_edit());
     nodes_->start("twin", kTwinHost, transport(kTwinHost), backstop_s);
     ASSERT_TRUE(nodes_->process("follower").wait_for_output("starting", std::chrono::seconds(20))) << nodes_->outputs();
     ASSERT_TRUE(nodes_->process("twin").wait_for_output("starting", std::chrono::seconds(20))) << nodes_->outputs();
