@@ -4,6 +4,21 @@
 
 namespace teleop::hand {
 
+GraspCloserConfig power_grasp(const HandMotorVector& closed_rad) {
+  GraspCloserConfig g;
+  g.closed_rad = closed_rad;
+  g.by_feel.fill(true);
+  g.closed_rad[hand_motor::kThumbOpposition] = 0.9;
+  g.by_feel[hand_motor::kThumbOpposition] = false;
+  g.closed_rad[hand_motor::kFingerSpread] = 0.0;
+  g.by_feel[hand_motor::kFingerSpread] = false;
+  g.squeeze_rad = 0.04;
+  g.current_limit_a.fill(1.0);
+  g.current_limit_a[hand_motor::kThumbFlexion] = 1.5;
+  g.current_limit_a[hand_motor::kThumbOpposition] = 1.5;
+  return g;
+}
+
 void GraspCloser::start(const HandMotorVector& from_rad) {
   from_ = from_rad;
   target_ = from_rad;
@@ -23,12 +38,13 @@ const HandMotorVector& GraspCloser::update(double t_s, const HandMotorVector& me
       target_[k] += std::clamp(c.closed_rad[k] - target_[k], -step, step);
       continue;
     }
-    if (t_s < c.shape_time_s || contact_[k]) continue;
+    if (t_s < c.shape_time_s) continue;
+    const double direction = c.closed_rad[k] >= from_[k] ? 1.0 : -1.0;
+    if (contact_[k]) continue;
     // met something: the finger no longer follows its target
     if (std::abs(target_[k] - measured_rad[k]) > c.contact_lag_rad) {
       contact_[k] = true;
       contact_rad_[k] = measured_rad[k];
-      const double direction = c.closed_rad[k] >= from_[k] ? 1.0 : -1.0;
       target_[k] = measured_rad[k] + direction * c.squeeze_rad;
       continue;
     }

@@ -43,14 +43,15 @@ namespace {
 
 // frames read per cycle at most: a babbling node must not keep the cycle from ending
 constexpr int kMaxFramesPerCycle = 512;
+// sends of one SDO write while configuring before the adapter gives up (see pump_sdo)
+constexpr uint8_t kSdoAttempts = 3;
 // controlwords are sent on change; this often they are repeated in case one was lost
 constexpr uint64_t kControlwordRefreshCycles = 25;
 constexpr uint32_t kPdoDisabled = 0x80000000u;
 
 const PdoMapping& feedback_mapping() {
-  static const PdoMapping m = *PdoMapping::make({{od::kPositionActualValue, 0, 32},
-                                                 {od::kCurrentActualValue, 0, 16},
-                                                 {od::kStatusword, 0, 16}});
+  static const PdoMapping m = *PdoMapping::make(
+      {{od::kPositionActualValue, 0, 32}, {od::kCurrentActualValue, 0, 16}, {od::kStatusword, 0, 16}});
   return m;
 }
 const PdoMapping& controlword_mapping() {
@@ -121,10 +122,9 @@ void HandAdapter::queue_configuration(Drive& d, size_t motor) {
   // drive: cyclic synchronous position, gains, current limit, limits, heartbeat
   queue_sdo(d, od::kModesOfOperation, 0, static_cast<uint8_t>(cia402::kModeCyclicSynchronousPosition), 1);
   const HandGains& g = config_.gains;
-  const double gains[hand_od::gain::kCount] = {g.position_kp_a_per_rad,      g.position_ki_a_per_rad_s,
-                                               g.position_kd_a_s_per_rad,    g.position_integral_limit_a,
-                                               g.max_reference_velocity_radps, g.current_kp_v_per_a,
-                                               g.current_ki_v_per_a_s};
+  const double gains[hand_od::gain::kCount] = {
+      g.position_kp_a_per_rad,        g.position_ki_a_per_rad_s, g.position_kd_a_s_per_rad, g.position_integral_limit_a,
+      g.max_reference_velocity_radps, g.current_kp_v_per_a,      g.current_ki_v_per_a_s};
   for (uint8_t s = 1; s <= hand_od::gain::kCount; ++s) {
     queue_sdo(d, hand_od::kGains, s, hand_od::real32_bits(gains[s - 1]), 4);
   }
@@ -158,11 +158,16 @@ bool HandAdapter::pump_sdo(int64_t now_ns) {
     if (d.sdo_busy && now_ns - d.sdo_sent_ns > static_cast<int64_t>(config_.sdo_timeout_s * 1e9)) {
       const SdoWrite& w = d.sdo[d.sdo_head];
       d.sdo_busy = false;
+      // while configuring, a write is sent again before giving up: the first one after the
+      // reset may reach a node that has not finished initialising (it ignores every frame then),
+      // when its heartbeat from before the reset was taken for its boot
+      if (phase_ == HandPhase::kConfiguring && d.sdo_attempts < kSdoAttempts) continue;
       d.sdo_head = (d.sdo_head + 1) % d.sdo.size();
       --d.sdo_count;
+      d.sdo_attempts = 0;
       if (phase_ == HandPhase::kConfiguring) {
-        fail("configuring node %u: no answer to SDO write 0x%04X:%u within %.0f ms", unsigned{d.node}, w.index,
-             unsigned{w.subindex}, config_.sdo_timeout_s * 1e3);
+        fail("configuring node %u: no answer to SDO write 0x%04X:%u within %.0f ms (%u attempts)", unsigned{d.node},
+             w.index, unsigned{w.subindex}, config_.sdo_timeout_s * 1e3, unsigned{kSdoAttempts});
         return false;
       }
       feedback_.sdo_abort_code[m] = sdo_abort::kTimeout;
@@ -172,6 +177,7 @@ bool HandAdapter::pump_sdo(int64_t now_ns) {
     const SdoWrite& w = d.sdo[d.sdo_head];
     send(encode_sdo_download_request(d.node, w.index, w.subindex, w.value, w.size));
     ++stats_.sdo_writes;
+    ++d.sdo_attempts;
     d.sdo_busy = true;
     d.sdo_sent_ns = now_ns;
   }
@@ -240,8 +246,8 @@ void HandAdapter::handle_tpdo(Drive& d, size_t m, const CanFrame& frame) {
   feedback_.statusword[m] = static_cast<uint16_t>(v[2]);
   // velocity from consecutive samples one cycle apart (the drive samples at SYNC)
   const uint64_t cycles = stats_.cycles - d.last_tpdo_cycle;
-  feedback_.velocity_radps[m] =
-      d.have_feedback && cycles > 0 ? (feedback_.position_rad[m] - previous) / (period_s_ * static_cast<double>(cycles))
+  feedback_.velocity_radps[m] = d.have_feedback && cycles > 0
+                                    ? (feedback_.position_rad[m] - previous) / (period_s_ * static_cast<double>(cycles))
                                     : 0.0;
   d.have_feedback = true;
   d.last_tpdo_cycle = stats_.cycles;
@@ -256,6 +262,7 @@ void HandAdapter::handle_sdo_response(Drive& d, size_t m, const CanFrame& frame)
   }
   const bool aborted = r->type == SdoType::kAbort;
   d.sdo_busy = false;
+  d.sdo_attempts = 0;
   d.sdo_head = (d.sdo_head + 1) % d.sdo.size();
   --d.sdo_count;
   if (!aborted) return;

@@ -48,14 +48,23 @@ class HandRig {
   int64_t now_ns() const { return now_ns_; }
   double period_s() const { return 1.0 / adapter_.config().cycle_rate_hz; }
 
-  /// One adapter cycle, then the drives run until the next one.
-  void cycle() {
+  /// The bus endpoint of drive i (fault injection: frames taken from it never reach the drive).
+  VirtualCanEndpoint& drive_endpoint(size_t i) { return *endpoints_[i]; }
+
+  /// One adapter cycle, then `between` (e.g. taking frames off the bus), then the drives run
+  /// until the next one.
+  template <typename F>
+  void cycle(F between) {
     adapter_.cycle(now_ns_);
+    between();
     const auto period_ns = static_cast<int64_t>(period_s() * 1e9);
     for (int64_t t = 0; t < period_ns; t += 1'000'000) {
       hand_->step(static_cast<double>(std::min<int64_t>(1'000'000, period_ns - t)) * 1e-9);
     }
     now_ns_ += period_ns;
+  }
+  void cycle() {
+    cycle([] {});
   }
   /// Cycles for `seconds` of simulated time.
   void run(double seconds) {

@@ -36,20 +36,6 @@ HandAdapterConfig config_for(const SvhModelIndex& index) {
   return c;
 }
 
-// the grasp of the vcan test and of the operator's plan: thumb opposed, spread closed, the
-// thumb's flexion and the four fingers closing by feel
-GraspCloserConfig grasp_for(const HandAdapterConfig& config) {
-  GraspCloserConfig g;
-  g.closed_rad = config.max_position_rad;
-  g.by_feel.fill(true);
-  g.closed_rad[hand_motor::kThumbOpposition] = 0.9;
-  g.by_feel[hand_motor::kThumbOpposition] = false;
-  g.closed_rad[hand_motor::kFingerSpread] = 0.0;
-  g.by_feel[hand_motor::kFingerSpread] = false;
-  g.squeeze_rad = 0.04;
-  return g;
-}
-
 double distance(const std::array<double, 3>& a, const std::array<double, 3>& b) {
   return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
 }
@@ -107,24 +93,30 @@ struct Grasped {
   MujocoDrivePlants plants = load("svh_hand_grasp.xml");
   HandRig rig{config_for(plants.hand().index()), {}, &plants};
   GraspObject object{plants.hand()};
-  GraspCloser closer{grasp_for(rig.adapter().config())};
+  GraspCloser closer{power_grasp(rig.adapter().config().max_position_rad)};
   HandTargets targets;
 
   void close_and_release() {
     ASSERT_TRUE(rig.run_until(HandPhase::kOperational, 2.0)) << rig.adapter().message();
+    targets.enable = true;  // open first (as the vcan test, whose drives start late)
+    rig.adapter().set_command(targets);
+    rig.run(0.6);
     closer.start(rig.adapter().feedback().position_rad);
-    targets.enable = true;
-    targets.current_limit_a.fill(0.6);  // the fingers gently: the thumb opposes them all
-    targets.current_limit_a[hand_motor::kThumbFlexion] = 1.5;
-    targets.current_limit_a[hand_motor::kThumbOpposition] = 1.5;
-    for (double t = 0; t < 4.0; t += rig.period_s()) {
-      targets.position_rad = closer.update(t, rig.adapter().feedback().position_rad);
+    targets.current_limit_a = closer.config().current_limit_a;
+    grasp_s = 0.0;
+    hold(3.0);
+    object.release();
+    hold(1.0);
+  }
+  /// The grasp controller keeps running: the fingers that touch keep pressing.
+  void hold(double seconds) {
+    for (double end = grasp_s + seconds; grasp_s < end; grasp_s += rig.period_s()) {
+      targets.position_rad = closer.update(grasp_s, rig.adapter().feedback().position_rad);
       rig.adapter().set_command(targets);
       rig.cycle();
     }
-    object.release();
-    rig.run(1.0);
   }
+  double grasp_s = 0.0;
 };
 
 TEST(MujocoHandAdapter, FingersStopOnTheObjectAndTheGraspHoldsItAgainstGravity) {
@@ -140,14 +132,20 @@ TEST(MujocoHandAdapter, FingersStopOnTheObjectAndTheGraspHoldsItAgainstGravity) 
   }
   EXPECT_GE(stopped, 5);
   const auto settled = g.object.position_m();
-  EXPECT_LT(distance(settled, supported_at), 0.03);  // it settled into the grip (~2 cm)
-  g.rig.run(5.0);
+  EXPECT_LT(distance(settled, supported_at), 0.04);  // it settled into the grip (25 mm)
+  g.hold(5.0);
   const auto held = g.object.position_m();
   std::printf(
       "grasp: %d motors stopped by contact, object settled %.1f mm, then moved %.3f mm in 5 s; %d links "
       "touch it, %.1f N\n",
       stopped, distance(settled, supported_at) * 1e3, distance(held, settled) * 1e3, g.object.touching_links(),
       g.object.hand_contact_force_n());
+  std::printf("motors: target / measured [rad] / current [A]:");
+  for (size_t k = 0; k < kHandMotors; ++k) {
+    std::printf(" %.3f/%.3f/%.2f", g.closer.targets()[k], g.rig.adapter().feedback().position_rad[k],
+                g.rig.adapter().feedback().current_a[k]);
+  }
+  std::printf("\n");
   EXPECT_LT(distance(held, settled), 1e-3);
   EXPECT_GE(g.object.touching_links(), 5);
   EXPECT_EQ(g.rig.adapter().phase(), HandPhase::kOperational) << g.rig.adapter().message();
@@ -155,12 +153,12 @@ TEST(MujocoHandAdapter, FingersStopOnTheObjectAndTheGraspHoldsItAgainstGravity) 
   // what the adapter reports is what the simulation holds: the motors' main joints to the
   // encoder's tick; the coupled joints, which the adapter computes through the coupling table,
   // within the mechanism's compliance under the grip's load (the equalities' softness: up to
-  // 18 mrad at the fingertips pressed on the object, against < 1 mrad moving freely)
+  // 26 mrad at the middle fingertip pressed on the object, against < 1 mrad moving freely)
   const HandJointVector reported = g.rig.adapter().joint_positions();
   const HandJointVector simulated = g.plants.hand().joint_positions();
   for (size_t j = 0; j < kHandJoints; ++j) {
     const bool main = g.plants.hand().index().equality[j] < 0;
-    EXPECT_NEAR(reported[j], simulated[j], main ? 1e-4 : 0.025) << kHandJointNames[j];
+    EXPECT_NEAR(reported[j], simulated[j], main ? 1e-4 : 0.035) << kHandJointNames[j];
   }
 }
 
@@ -169,14 +167,15 @@ struct FaultInGrasp {
   const char* name;
   uint32_t bit;
   size_t motor;
-  std::function<void(HandRig&)> inject;
+  std::function<void(Grasped&)> inject;
 };
 
 void fault_in_grasp(const FaultInGrasp& f) {
   Grasped g;
   ASSERT_NO_FATAL_FAILURE(g.close_and_release());
   const auto before = g.object.position_m();
-  f.inject(g.rig);
+  f.inject(g);
+  g.hold(0.5);  // the operator does not know yet (and in safe hold the adapter ignores commands)
   ASSERT_TRUE(g.rig.run_until(HandPhase::kSafeHold, 1.5)) << f.name;
   EXPECT_NE(g.rig.adapter().feedback().faults[f.motor] & f.bit, 0u) << f.name << ": " << g.rig.adapter().message();
   g.rig.run(3.0);
@@ -190,38 +189,31 @@ void fault_in_grasp(const FaultInGrasp& f) {
 
 TEST(MujocoHandAdapter, SafeHoldKeepsTheObjectOnAMissingHeartbeat) {
   fault_in_grasp(
-      {"heartbeat", hand_fault::kHeartbeat, 3, [](HandRig& r) { r.drive(3).set_heartbeat_suppressed(true); }});
+      {"heartbeat", hand_fault::kHeartbeat, 3, [](Grasped& g) { g.rig.drive(3).set_heartbeat_suppressed(true); }});
 }
 
 TEST(MujocoHandAdapter, SafeHoldKeepsTheObjectOnStalePdos) {
-  fault_in_grasp(
-      {"stale pdo", hand_fault::kStalePdo, 5, [](HandRig& r) { r.drive(5).drop_tpdos(EmulatedDrive::kDropForever); }});
+  fault_in_grasp({"stale pdo", hand_fault::kStalePdo, 5,
+                  [](Grasped& g) { g.rig.drive(5).drop_tpdos(EmulatedDrive::kDropForever); }});
 }
 
 TEST(MujocoHandAdapter, SafeHoldKeepsTheObjectOnBusOff) {
-  fault_in_grasp(
-      {"bus-off", hand_fault::kBusOff, 0, [](HandRig& r) { r.adapter_endpoint().set_state(CanBusState::kBusOff); }});
+  fault_in_grasp({"bus-off", hand_fault::kBusOff, 0,
+                  [](Grasped& g) { g.rig.adapter_endpoint().set_state(CanBusState::kBusOff); }});
 }
 
 TEST(MujocoHandAdapter, SafeHoldKeepsTheObjectOnAnSdoAbort) {
-  fault_in_grasp({"sdo abort", hand_fault::kSdo, 2, [](HandRig& r) {
-                    r.drive(2).set_sdo_refused(true);
-                    // a changed current limit goes out by SDO: node 3 refuses it
-                    HandTargets t;
-                    t.enable = true;
-                    t.position_rad = r.adapter().feedback().target_rad;
-                    t.current_limit_a.fill(0.6);
-                    t.current_limit_a[0] = 1.5;
-                    t.current_limit_a[1] = 1.5;
-                    t.current_limit_a[2] = 0.7;
-                    r.adapter().set_command(t);
+  // the operator lowers node 3's current limit, which goes out by SDO: node 3 refuses it
+  fault_in_grasp({"sdo abort", hand_fault::kSdo, 2, [](Grasped& g) {
+                    g.rig.drive(2).set_sdo_refused(true);
+                    g.targets.current_limit_a[2] = 0.7;
                   }});
 }
 
 TEST(MujocoHandAdapter, ADriveFaultLetsItsFingerGoLimpTheOthersHold) {
   // the ring finger's drive in fault: its power stage off, the finger limp; the thumb and the
   // other fingers, quick-stopped, keep the object
-  fault_in_grasp({"emcy", hand_fault::kEmcy, 6, [](HandRig& r) { r.drive(6).raise_fault(emcy::kOverCurrent); }});
+  fault_in_grasp({"emcy", hand_fault::kEmcy, 6, [](Grasped& g) { g.rig.drive(6).raise_fault(emcy::kOverCurrent); }});
 }
 
 }  // namespace

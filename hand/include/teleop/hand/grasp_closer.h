@@ -5,7 +5,9 @@
 // by more than `contact_lag_rad`: something holds it), and from then on the target stays a
 // fixed squeeze past where the finger stopped, so the drive presses with a bounded position
 // error (the drives' following error window, 0x6065, is 0.2 rad: the squeeze must stay below
-// it). A finger that meets nothing stops at its closed angle. Used by the grasp tests (in
+// it) and a current within the grasp's limit. A finger that meets nothing stops at its closed
+// angle. (Following the object as it gives way, the target a squeeze past the finger at every
+// update, was tried: the four fingers then push the thumb open until it faults.) Used by the grasp tests (in
 // process and over vcan); plain arithmetic, real-time safe.
 
 #include <array>
@@ -27,7 +29,16 @@ struct GraspCloserConfig {
   double contact_lag_rad = 0.08;
   /// Target past the contact angle once a finger has met something.
   double squeeze_rad = 0.12;
+  /// Current limit of each motor during the grasp [A] (0: the adapter's default).
+  HandMotorVector current_limit_a{};
 };
+
+/// The power grasp of the MuJoCo hand's grasp scene (config/models/svh_hand_grasp.xml,
+/// docs/hand.md), with `closed_rad` the motors' upper limits: the thumb turned into opposition
+/// (0.9 rad) and the spread closed (0), then the thumb's flexion and the four fingers by feel,
+/// squeezing 0.04 rad past contact; the fingers at 1.0 A (0.8 N m), the thumb at 1.5 A. (With
+/// the fingers at 0.6 or 0.8 A the tube slides along its axis out of the grip, mm per second.)
+GraspCloserConfig power_grasp(const HandMotorVector& closed_rad);
 
 class GraspCloser {
  public:
@@ -43,6 +54,7 @@ class GraspCloser {
   /// The angle at which motor k met something [rad].
   double contact_rad(size_t k) const { return contact_rad_[k]; }
   const HandMotorVector& targets() const { return target_; }
+  const GraspCloserConfig& config() const { return config_; }
 
  private:
   GraspCloserConfig config_;
