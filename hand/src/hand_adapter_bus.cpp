@@ -50,8 +50,9 @@ constexpr uint64_t kControlwordRefreshCycles = 25;
 constexpr uint32_t kPdoDisabled = 0x80000000u;
 
 const PdoMapping& feedback_mapping() {
-  static const PdoMapping m = *PdoMapping::make(
-      {{od::kPositionActualValue, 0, 32}, {od::kCurrentActualValue, 0, 16}, {od::kStatusword, 0, 16}});
+  static const PdoMapping m = *PdoMapping::make({{od::kPositionActualValue, 0, 32},
+                                                 {od::kCurrentActualValue, 0, 16},
+                                                 {od::kStatusword, 0, 16}});
   return m;
 }
 const PdoMapping& controlword_mapping() {
@@ -122,9 +123,10 @@ void HandAdapter::queue_configuration(Drive& d, size_t motor) {
   // drive: cyclic synchronous position, gains, current limit, limits, heartbeat
   queue_sdo(d, od::kModesOfOperation, 0, static_cast<uint8_t>(cia402::kModeCyclicSynchronousPosition), 1);
   const HandGains& g = config_.gains;
-  const double gains[hand_od::gain::kCount] = {
-      g.position_kp_a_per_rad,        g.position_ki_a_per_rad_s, g.position_kd_a_s_per_rad, g.position_integral_limit_a,
-      g.max_reference_velocity_radps, g.current_kp_v_per_a,      g.current_ki_v_per_a_s};
+  const double gains[hand_od::gain::kCount] = {g.position_kp_a_per_rad,      g.position_ki_a_per_rad_s,
+                                               g.position_kd_a_s_per_rad,    g.position_integral_limit_a,
+                                               g.max_reference_velocity_radps, g.current_kp_v_per_a,
+                                               g.current_ki_v_per_a_s};
   for (uint8_t s = 1; s <= hand_od::gain::kCount; ++s) {
     queue_sdo(d, hand_od::kGains, s, hand_od::real32_bits(gains[s - 1]), 4);
   }
@@ -246,8 +248,8 @@ void HandAdapter::handle_tpdo(Drive& d, size_t m, const CanFrame& frame) {
   feedback_.statusword[m] = static_cast<uint16_t>(v[2]);
   // velocity from consecutive samples one cycle apart (the drive samples at SYNC)
   const uint64_t cycles = stats_.cycles - d.last_tpdo_cycle;
-  feedback_.velocity_radps[m] = d.have_feedback && cycles > 0
-                                    ? (feedback_.position_rad[m] - previous) / (period_s_ * static_cast<double>(cycles))
+  feedback_.velocity_radps[m] =
+      d.have_feedback && cycles > 0 ? (feedback_.position_rad[m] - previous) / (period_s_ * static_cast<double>(cycles))
                                     : 0.0;
   d.have_feedback = true;
   d.last_tpdo_cycle = stats_.cycles;

@@ -41,8 +41,8 @@ TEST(HandAdapter, BootsConfiguresAndEnablesEveryDrive) {
   HandAdapterConfig config;
   config.gains.position_kp_a_per_rad = 25.0;
   HandRig rig(config);
-  ASSERT_TRUE(rig.run_until(HandPhase::kOperational, 2.0))
-      << to_string(rig.adapter().phase()) << ": " << rig.adapter().message();
+  ASSERT_TRUE(rig.run_until(HandPhase::kOperational, 2.0)) << to_string(rig.adapter().phase()) << ": "
+                                                           << rig.adapter().message();
   EXPECT_TRUE(rig.adapter().started());
   for (size_t i = 0; i < rig.drives(); ++i) {
     const EmulatedDrive& d = rig.drive(i);
@@ -308,7 +308,7 @@ TEST(HandAdapter, CycleAndCommandDoNotAllocate) {
     for (int i = 0; i < 50; ++i) {
       HandTargets t = targets_at(0.2 + 0.001 * i);
       t.current_limit_a.fill(i < 25 ? 1.0 : 1.2);  // SDO writes queued and sent
-      t.position_rad[0] = 9.0;                     // clamped
+      t.position_rad[0] = 9.0;                      // clamped
       rig.adapter().set_command(t);
       rig.adapter().cycle(rig.now_ns());
       (void)rig.adapter().joint_positions();

@@ -11,7 +11,9 @@
 #include <functional>
 #include <string>
 
+#include "hand_plan.h"
 #include "hand_rig.h"
+#include "teleop/common/config.h"
 #include "teleop/hand/grasp_closer.h"
 #include "teleop/hand/grasp_object.h"
 #include "teleop/hand/mujoco_drive_plants.h"
@@ -214,6 +216,38 @@ TEST(MujocoHandAdapter, ADriveFaultLetsItsFingerGoLimpTheOthersHold) {
   // the ring finger's drive in fault: its power stage off, the finger limp; the thumb and the
   // other fingers, quick-stopped, keep the object
   fault_in_grasp({"emcy", hand_fault::kEmcy, 6, [](Grasped& g) { g.rig.drive(6).raise_fault(emcy::kOverCurrent); }});
+}
+
+// item 5: the operator's grasp as the leader sends it (config/nodes/leader_hand.yaml, an open-loop
+// HandCommand plan) grasps the tube too, and holds it after the support goes
+TEST(MujocoHandAdapter, TheLeadersHandPlanGraspsTheTube) {
+  const ConfigNode root = ConfigNode::load_file(std::string(TELEOP_SOURCE_DIR) + "/config/nodes/leader_hand.yaml");
+  const leader::HandPlan plan = leader::parse_hand_plan(root.child("leader").child("hand"));
+  MujocoDrivePlants plants = load("svh_hand_grasp.xml");
+  HandRig rig(config_for(plants.hand().index()), {}, &plants);
+  GraspObject object(plants.hand());
+  ASSERT_TRUE(rig.run_until(HandPhase::kOperational, 2.0)) << rig.adapter().message();
+  HandTargets t;
+  t.enable = true;
+  double time_s = 0.0;
+  const auto play = [&](double until_s) {
+    for (; time_s < until_s; time_s += rig.period_s()) {
+      plan.sample(time_s, t.position_rad, t.current_limit_a);
+      rig.adapter().set_command(t);
+      rig.cycle();
+    }
+  };
+  play(5.0);
+  EXPECT_GE(object.touching_links(), 5);
+  object.release();
+  play(6.0);
+  const auto settled = object.position_m();
+  play(11.0);
+  std::printf("the leader's plan: the tube moved %.3f mm in 5 s after settling, %d links\n",
+              distance(object.position_m(), settled) * 1e3, object.touching_links());
+  EXPECT_LT(distance(object.position_m(), settled), 1e-3);
+  EXPECT_GE(object.touching_links(), 5);
+  EXPECT_EQ(rig.adapter().phase(), HandPhase::kOperational) << rig.adapter().message();
 }
 
 }  // namespace
