@@ -1,5 +1,6 @@
 #include "teleop/hand/grasp_object.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace teleop::hand {
@@ -54,18 +55,17 @@ int GraspObject::hand_contacts() const {
 int GraspObject::touching_links() const {
   const mjModel* m = hand_.model();
   const mjData* d = hand_.data();
-  // a contact list is short (tens): mark each hand body once, without allocating
-  constexpr int kMaxBodies = 64;
-  bool seen[kMaxBodies] = {};
+  // a grasp's contact list is short (tens): the distinct hand bodies in a fixed list, no allocation
+  constexpr int kMaxLinks = 64;
+  int seen[kMaxLinks];
   int links = 0;
-  for (int i = 0; i < d->ncon; ++i) {
+  for (int i = 0; i < d->ncon && links < kMaxLinks; ++i) {
     const mjContact& c = d->contact[i];
     int other = -1;
     if (m->geom_bodyid[c.geom1] == body_ && is_hand_geom(c.geom2)) other = m->geom_bodyid[c.geom2];
     if (m->geom_bodyid[c.geom2] == body_ && is_hand_geom(c.geom1)) other = m->geom_bodyid[c.geom1];
-    if (other < 0 || other >= kMaxBodies || seen[other]) continue;
-    seen[other] = true;
-    ++links;
+    if (other < 0 || std::find(seen, seen + links, other) != seen + links) continue;
+    seen[links++] = other;
   }
   return links;
 }
