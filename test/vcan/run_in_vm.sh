@@ -152,6 +152,11 @@ for d in "${datas[@]}"; do
 done
 {
   printf 'cd /tmp\n'
+  # the sanitizer options of the test preset (e.g. the ASan build's new_delete_type_mismatch=0,
+  # for Fast DDS) hold in the VM too
+  for v in ASAN_OPTIONS UBSAN_OPTIONS TSAN_OPTIONS LSAN_OPTIONS; do
+    [ -n "${!v:-}" ] && printf 'export %s=%q\n' "$v" "${!v}"
+  done
   printf '%q ' "$@"
   printf '\n'
 } > "$work/root/opt/teleop/cmd.sh"
