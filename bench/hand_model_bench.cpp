@@ -6,6 +6,11 @@
 // state (restored from a snapshot: positions, velocities, controls, the solver's warm start; a
 // copy of a few hundred bytes, in every benchmark alike), so the bare step sees the contact and
 // the constraints the controlled one does.
+// The emulator's cycle (teleop_hand_emulator, docs/hand.md): nine emulated drives stepped through
+// one 4 ms cycle of the adapter's 250 Hz SYNC (the adapter on a VirtualCanBus sends SYNC and the
+// targets, the drives answer; only the drives' and the plant's work is timed), turning their own
+// DC-motor links (--plant motor) or the MuJoCo hand (--plant mujoco) moving freely or holding the
+// grasp scene's object; the counter rtf is simulated time per CPU time, the real-time factor.
 // Run: build/default/bin/teleop_hand_model_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -13,9 +18,18 @@
 #include <string>
 #include <vector>
 
+#include <cmath>
+#include <memory>
+
+#include "teleop/can/virtual_can_bus.h"
 #include "teleop/experiment/hand_study.h"
 #include "teleop/experiment/hand_study_simulation.h"
+#include "teleop/hand/emulated_hand.h"
+#include "teleop/hand/grasp_closer.h"
+#include "teleop/hand/grasp_object.h"
+#include "teleop/hand/hand_adapter.h"
 #include "teleop/hand/hand_plant.h"
+#include "teleop/hand/mujoco_drive_plants.h"
 #include "teleop/hand/position_control.h"
 
 namespace teleop {
@@ -132,6 +146,122 @@ void BM_SceneStudyStepCouplingsAsServos(benchmark::State& state) {
   scene_study_step(state, hand::CouplingMode::kServo);
 }
 BENCHMARK(BM_SceneStudyStepCouplingsAsServos);
+
+// the adapter and nine drives on a VirtualCanBus, the drives turning `plants` (null: their links)
+class EmulatorRig {
+ public:
+  EmulatorRig(std::unique_ptr<hand::MujocoDrivePlants> plants, const hand::HandAdapterConfig& config)
+      : plants_(std::move(plants)), adapter_ep_(bus_.open("adapter")), adapter_(*adapter_ep_, config) {
+    std::vector<hand::EmulatedHandNode> nodes;
+    for (size_t k = 0; k < hand::kHandMotors; ++k) {
+      endpoints_.push_back(bus_.open("drive"));
+      hand::EmulatedHandNode n;
+      n.bus = endpoints_.back().get();
+      n.config.node_id = config.node_ids[k];
+      n.channel = k;
+      nodes.push_back(n);
+    }
+    hand_ = std::make_unique<hand::EmulatedHand>(nodes, plants_.get());
+    while (adapter_.phase() != hand::HandPhase::kOperational && now_ns_ < 5'000'000'000) cycle();
+  }
+  hand::HandAdapter& adapter() { return adapter_; }
+  hand::MujocoDrivePlants* plants() { return plants_.get(); }
+  /// the adapter's cycle (SYNC, targets), then the drives through the 4 ms
+  void adapter_cycle() { adapter_.cycle(now_ns_); }
+  void drives_cycle() {
+    hand_->step(kCycleS);
+    now_ns_ += 4'000'000;
+  }
+  void cycle() {
+    adapter_cycle();
+    drives_cycle();
+  }
+  static constexpr double kCycleS = 4e-3;
+
+ private:
+  std::unique_ptr<hand::MujocoDrivePlants> plants_;
+  can::VirtualCanBus bus_;
+  std::unique_ptr<can::VirtualCanEndpoint> adapter_ep_;
+  hand::HandAdapter adapter_;
+  std::vector<std::unique_ptr<can::VirtualCanEndpoint>> endpoints_;
+  std::unique_ptr<hand::EmulatedHand> hand_;
+  int64_t now_ns_ = 0;
+};
+
+std::unique_ptr<hand::MujocoDrivePlants> mujoco_hand(const std::string& model) {
+  return std::make_unique<hand::MujocoDrivePlants>(
+      hand::HandPlant(sim::MujocoModel::load(kSource + "/config/models/" + model), hand::HandCoupling::svh()), 4.8);
+}
+
+hand::HandAdapterConfig config_for(const hand::MujocoDrivePlants* plants) {
+  hand::HandAdapterConfig c;
+  if (plants != nullptr) {
+    for (size_t k = 0; k < hand::kHandMotors; ++k)
+      c.max_position_rad[k] = plants->hand().index().motor_max_rad[k] - 5e-3;
+  }
+  return c;
+}
+
+// every motor swinging through its range at 0.5 Hz (phase-shifted), as the vcan tracking test
+void emulator_moving(benchmark::State& state, std::unique_ptr<hand::MujocoDrivePlants> plants) {
+  const hand::HandAdapterConfig config = config_for(plants.get());
+  EmulatorRig rig(std::move(plants), config);
+  double t = 0.0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    hand::HandTargets targets;
+    targets.enable = true;
+    for (size_t k = 0; k < hand::kHandMotors; ++k) {
+      targets.position_rad[k] =
+          config.max_position_rad[k] * (0.5 - 0.3 * std::cos(M_PI * t + 0.2 * static_cast<double>(k)));
+    }
+    rig.adapter().set_command(targets);
+    rig.adapter_cycle();
+    t += EmulatorRig::kCycleS;
+    state.ResumeTiming();
+    rig.drives_cycle();
+  }
+  state.counters["rtf"] =
+      benchmark::Counter(EmulatorRig::kCycleS * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  if (rig.plants() != nullptr) state.counters["mujoco_warnings"] = rig.plants()->hand().mujoco_warnings();
+}
+
+void BM_Emulator250HzMotorPlant(benchmark::State& state) { emulator_moving(state, nullptr); }
+BENCHMARK(BM_Emulator250HzMotorPlant)->Unit(benchmark::kMicrosecond);
+
+void BM_Emulator250HzMujocoHandMoving(benchmark::State& state) { emulator_moving(state, mujoco_hand("svh_hand.xml")); }
+BENCHMARK(BM_Emulator250HzMujocoHandMoving)->Unit(benchmark::kMicrosecond);
+
+// the grasp scene's object held (its support released): the contacts of a grasp in every step
+void BM_Emulator250HzMujocoHandGrasping(benchmark::State& state) {
+  auto plants = mujoco_hand("svh_hand_grasp.xml");
+  const hand::HandAdapterConfig config = config_for(plants.get());
+  EmulatorRig rig(std::move(plants), config);
+  hand::GraspObject object(rig.plants()->hand());
+  hand::GraspCloser closer(hand::power_grasp(config.max_position_rad));
+  closer.start(rig.adapter().feedback().position_rad);
+  hand::HandTargets targets;
+  targets.enable = true;
+  targets.current_limit_a = closer.config().current_limit_a;
+  for (double t = 0.0; t < 5.0; t += EmulatorRig::kCycleS) {
+    if (t >= 4.0) object.release();
+    targets.position_rad = closer.update(t, rig.adapter().feedback().position_rad);
+    rig.adapter().set_command(targets);
+    rig.cycle();
+  }
+  for (auto _ : state) {
+    state.PauseTiming();
+    rig.adapter_cycle();
+    state.ResumeTiming();
+    rig.drives_cycle();
+  }
+  state.counters["rtf"] =
+      benchmark::Counter(EmulatorRig::kCycleS * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["contacts"] = rig.plants()->hand().data()->ncon;
+  state.counters["object_links"] = object.touching_links();
+  state.counters["mujoco_warnings"] = rig.plants()->hand().mujoco_warnings();
+}
+BENCHMARK(BM_Emulator250HzMujocoHandGrasping)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace teleop

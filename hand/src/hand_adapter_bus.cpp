@@ -43,6 +43,8 @@ namespace {
 
 // frames read per cycle at most: a babbling node must not keep the cycle from ending
 constexpr int kMaxFramesPerCycle = 512;
+// sends of one SDO write while configuring before the adapter gives up (see pump_sdo)
+constexpr uint8_t kSdoAttempts = 3;
 // controlwords are sent on change; this often they are repeated in case one was lost
 constexpr uint64_t kControlwordRefreshCycles = 25;
 constexpr uint32_t kPdoDisabled = 0x80000000u;
@@ -158,11 +160,16 @@ bool HandAdapter::pump_sdo(int64_t now_ns) {
     if (d.sdo_busy && now_ns - d.sdo_sent_ns > static_cast<int64_t>(config_.sdo_timeout_s * 1e9)) {
       const SdoWrite& w = d.sdo[d.sdo_head];
       d.sdo_busy = false;
+      // while configuring, a write is sent again before giving up: the first one after the
+      // reset may reach a node that has not finished initialising (it ignores every frame then),
+      // when its heartbeat from before the reset was taken for its boot
+      if (phase_ == HandPhase::kConfiguring && d.sdo_attempts < kSdoAttempts) continue;
       d.sdo_head = (d.sdo_head + 1) % d.sdo.size();
       --d.sdo_count;
+      d.sdo_attempts = 0;
       if (phase_ == HandPhase::kConfiguring) {
-        fail("configuring node %u: no answer to SDO write 0x%04X:%u within %.0f ms", unsigned{d.node}, w.index,
-             unsigned{w.subindex}, config_.sdo_timeout_s * 1e3);
+        fail("configuring node %u: no answer to SDO write 0x%04X:%u within %.0f ms (%u attempts)", unsigned{d.node},
+             w.index, unsigned{w.subindex}, config_.sdo_timeout_s * 1e3, unsigned{kSdoAttempts});
         return false;
       }
       feedback_.sdo_abort_code[m] = sdo_abort::kTimeout;
@@ -172,6 +179,7 @@ bool HandAdapter::pump_sdo(int64_t now_ns) {
     const SdoWrite& w = d.sdo[d.sdo_head];
     send(encode_sdo_download_request(d.node, w.index, w.subindex, w.value, w.size));
     ++stats_.sdo_writes;
+    ++d.sdo_attempts;
     d.sdo_busy = true;
     d.sdo_sent_ns = now_ns;
   }
@@ -256,6 +264,7 @@ void HandAdapter::handle_sdo_response(Drive& d, size_t m, const CanFrame& frame)
   }
   const bool aborted = r->type == SdoType::kAbort;
   d.sdo_busy = false;
+  d.sdo_attempts = 0;
   d.sdo_head = (d.sdo_head + 1) % d.sdo.size();
   --d.sdo_count;
   if (!aborted) return;

@@ -98,6 +98,13 @@ LeaderConfig parse_leader_config(const ConfigNode& root) {
   if (s.has("arm_model")) c.arm_model = sim::get_model_path(s, "arm_model");
   c.ee_site = s.get_string("ee_site", c.ee_site);
   c.workspace_scale = s.get_double("workspace_scale", Range{0.01, 100}, c.workspace_scale);
+  if (const auto hand = s.optional_child("hand")) {
+    try {
+      c.hand = parse_hand_plan(*hand);
+    } catch (const std::invalid_argument& e) {
+      throw hand->error("plan", e.what());
+    }
+  }
   parse_feedback(s, c);
   const auto teleoperation = runtime::parse_teleoperation_config(root);
   if (!teleoperation) throw root.error("teleoperation", "the leader needs a teleoperation section (architecture)");

@@ -5,12 +5,14 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "teleop/common/config.h"
 #include "teleop/common/joint_model.h"
 #include "feedback_renderer.h"
+#include "hand_plan.h"
 #include "joint_trajectory.h"
 #include "operator_motion.h"
 #include "simulated_haptic_arm.h"
@@ -57,6 +59,9 @@ struct LeaderConfig {
   /// Scaling from the device to the follower's command (joint angles or positions).
   double workspace_scale = 1.0;
   runtime::TeleoperationConfig teleoperation;
+  /// `leader.hand` (optional): the simulated operator's hand, a HandCommand plan for the
+  /// teleop_hand node (hand_plan.h); without it the leader commands no hand.
+  std::optional<HandPlan> hand;
 };
 
 /// The recorded operator motion whose CSV file is `section.key` (joints and column prefix from

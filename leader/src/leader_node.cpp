@@ -64,6 +64,7 @@ LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context
     cmd.stiffness_nm_per_rad().assign(n, config.stiffness_nm_per_rad);
     cmd.damping_nms_per_rad().assign(n, config.damping_nms_per_rad);
   }
+  if (config.hand) hand_command_.emplace(context.participant, transport::topics::kHandCommand, context.node.name);
   auto& st = device_state_.sample();
   st.robot("leader_device");
   st.arm(transport::arm_label(config.arm));
@@ -260,6 +261,7 @@ void LeaderNode::cycle(const CycleTick& tick) {
   update_state(tick.now_ns);
   // the operator keeps moving; what the follower is sent freezes while it is lost
   move_device(static_cast<double>(tick.index) * period_s_);
+  command_hand(static_cast<double>(tick.index) * period_s_);
   send_command(state_ == msg::STATE_SAFE_HOLD);
   const bool fresh = compute_feedback(tick.now_ns);
   // lost or stale source, or the follower gone: fade the feedback out, never cut it
@@ -267,6 +269,17 @@ void LeaderNode::cycle(const CycleTick& tick) {
   if (device_impl_ && !device_impl_->write(renderer_.output())) ++device_faults_;
   publish_device_state();
   update_trace_values();
+}
+
+// the operator's hand: the plan's targets to the hand node (which holds them, and reports a
+// stale command, if the leader goes away)
+void LeaderNode::command_hand(double t_s) {
+  if (!hand_command_) return;
+  msg::HandCommand& c = hand_command_->sample();
+  config_.hand->sample(t_s, c.target_position_rad(), c.current_limit_a());
+  c.enable(true);
+  c.fault_reset(false);
+  hand_command_->publish();
 }
 
 void LeaderNode::fill_status(msg::NodeStatus& status) const {
@@ -280,6 +293,7 @@ void LeaderNode::active_faults(std::vector<uint32_t>& faults) const {
 
 void LeaderNode::fill_report(runtime::NodeReport& report) const {
   if (joint_command_) report.add(*joint_command_);
+  if (hand_command_) report.add(*hand_command_);
   if (cartesian_command_) report.add(*cartesian_command_);
   report.add(device_state_);
   report.add(follower_state_);

@@ -6,6 +6,7 @@
 // freezes the command and fades the feedback out; NodeStatus reports it.
 
 #include <teleop/msg/arm.h>
+#include <teleop/msg/hand.h>
 
 #include <memory>
 #include <optional>
@@ -61,6 +62,7 @@ class LeaderNode final : public runtime::NodeLogic {
   bool position_coupling_feedback(int64_t now_ns);
   bool wrench_feedback(int64_t now_ns);
   void publish_device_state();
+  void command_hand(double t_s);
   void update_trace_values();
 
   LeaderConfig config_;
@@ -68,6 +70,7 @@ class LeaderNode final : public runtime::NodeLogic {
   std::optional<transport::Publication<msg::JointCommand>> joint_command_;
   std::optional<transport::Publication<msg::CartesianCommand>> cartesian_command_;
   transport::Publication<msg::JointState> device_state_;
+  std::optional<transport::Publication<msg::HandCommand>> hand_command_;  // with leader.hand
   transport::Subscription<msg::JointState> follower_state_;
   transport::Subscription<msg::WrenchStamped> follower_wrench_;
   transport::Subscription<msg::JointTorque> twin_feedback_;

@@ -228,6 +228,40 @@ TEST(HandAdapter, SdoAbortAtRunTimeHoldsWithTheAbortCode) {
   ASSERT_TRUE(rig.run_until(HandPhase::kOperational, 1.0)) << rig.adapter().message();
 }
 
+TEST(HandAdapter, ConfiguringSendsALostSdoWriteAgain) {
+  // node 3's first SDO request is lost (as one reaching a node still initialising after the
+  // reset, which ignores every frame): the adapter sends it again after the SDO timeout
+  HandRig rig;
+  bool dropped = false;
+  for (int i = 0; i < 500 && rig.adapter().phase() != HandPhase::kOperational; ++i) {
+    rig.cycle([&] {
+      if (dropped || rig.adapter().phase() != HandPhase::kConfiguring) return;
+      CanFrame f;
+      while (rig.drive_endpoint(2).receive(f, std::chrono::nanoseconds::zero()) == CanStatus::kOk) {
+        dropped = dropped || f.id == cob::kSdoRx + 3u;
+      }
+    });
+  }
+  EXPECT_TRUE(dropped);
+  EXPECT_EQ(rig.adapter().phase(), HandPhase::kOperational) << rig.adapter().message();
+}
+
+TEST(HandAdapter, ConfiguringFailsWhenANodeNeverAnswersAnSdoWrite) {
+  HandRig rig;
+  for (int i = 0; i < 500 && rig.adapter().phase() != HandPhase::kFailed; ++i) {
+    rig.cycle([&] {
+      if (rig.adapter().phase() != HandPhase::kConfiguring) return;
+      CanFrame f;
+      while (rig.drive_endpoint(2).receive(f, std::chrono::nanoseconds::zero()) == CanStatus::kOk) {
+      }
+    });
+  }
+  ASSERT_EQ(rig.adapter().phase(), HandPhase::kFailed);
+  EXPECT_NE(std::string(rig.adapter().message()).find("configuring node 3: no answer to SDO write"), std::string::npos)
+      << rig.adapter().message();
+  EXPECT_NE(std::string(rig.adapter().message()).find("(3 attempts)"), std::string::npos) << rig.adapter().message();
+}
+
 TEST(HandAdapter, RebootedNodeIsAFault) {
   HandRig rig;
   ASSERT_TRUE(rig.run_until(HandPhase::kOperational));

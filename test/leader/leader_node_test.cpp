@@ -184,3 +184,36 @@ TEST_F(FeedbackFadeTest, FadesTheFeedbackToZeroWithoutAStepWhenTheFollowerDiesIn
 
 }  // namespace
 }  // namespace teleop::leader
+
+namespace teleop::leader {
+namespace {
+
+TEST(LeaderNodeHand, StreamsTheOperatorsHandPlanAsHandCommand) {
+  test::NodeHarness harness{"leader"};
+  LeaderConfig c = config();
+  HandMotors closed{};
+  closed.fill(0.6);
+  HandMotors limit{};
+  limit.fill(1.0);
+  c.hand = HandPlan({{0.0, HandMotors{}, HandMotors{}}, {0.2, closed, limit}});
+  LeaderNode node{c, harness.context};
+  transport::Subscription<msg::HandCommand> hand{harness.peer, transport::topics::kHandCommand};
+  ASSERT_TRUE(test::eventually([&] { return hand.reader().matched() > 0; }));
+  for (int i = 0; i < 300; ++i) {
+    std::this_thread::sleep_for(std::chrono::microseconds(500));
+    node.cycle(harness.tick());
+  }
+  ASSERT_TRUE(test::eventually([&] {
+    hand.poll();
+    return hand.has_sample() && hand.latest().header().seq() >= 300;
+  }));
+  for (size_t m = 0; m < 9; ++m) {
+    EXPECT_NEAR(hand.latest().target_position_rad()[m], 0.6, 1e-12) << m;  // the plan's end, held
+    EXPECT_EQ(hand.latest().current_limit_a()[m], 1.0);
+  }
+  EXPECT_TRUE(hand.latest().enable());
+  EXPECT_FALSE(hand.latest().fault_reset());
+}
+
+}  // namespace
+}  // namespace teleop::leader

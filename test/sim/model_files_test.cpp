@@ -40,7 +40,7 @@ TEST(ModelFiles, LoadsEveryModelAndSceneWhenCompiledByMujoco) {
   const std::vector<std::string> expected{"dual_arm.xml",       "dual_arm_mobile.xml", "left_arm.xml",
                                           "right_arm.xml",      "panda.xml",           "scene_box_shelf.xml",
                                           "scene_table.xml",    "scene_wall.xml",      "scene_wiping.xml",
-                                          "svh_hand.xml",       "scene_ur5_svh.xml"};
+                                          "svh_hand.xml",       "scene_ur5_svh.xml",   "svh_hand_grasp.xml"};
   for (const auto& name : expected) {
     EXPECT_NE(std::find(files.begin(), files.end(), model_path(name)), files.end()) << name;
   }

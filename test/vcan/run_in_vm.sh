@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Runs a test command where a vcan interface exists.
-#   run_in_vm.sh [--cache DIR] [--timeout S] [--iface NAME] --bin FILE [--bin FILE ...] -- COMMAND [ARGS...]
+#   run_in_vm.sh [--cache DIR] [--timeout S] [--vm] --bin FILE [--bin FILE ...] [--data DIR ...] -- COMMAND [ARGS...]
 # Host with vcan (root, `ip link add type vcan` works): creates a private vcan interface, runs
 # COMMAND directly with the --bin folders on PATH and TELEOP_VCAN_IF set, deletes the interface.
 # Otherwise: boots Debian's kernel in qemu (TCG is fine) from an initramfs holding busybox, the
 # CAN modules, iproute2's ip, candump/cansend, the --bin files and every library ldd lists;
-# inside, loads can, can-raw, can-dev, vcan, creates vcan0, runs COMMAND, prints
+# inside, loads can, can-raw, can-dev, vcan, creates vcan0, runs COMMAND (the --data folders in
+# /opt/teleop/share/teleop/, where the binaries in /opt/teleop/bin look for teleop's data), prints
 # "TELEOP_VCAN_RESULT PASS|FAIL rc=N" on the serial console and powers off. This script exits
 # with COMMAND's status; with 1 when anything is missing (never skips) or no result came back
 # within the timeout. The kernel package and the base initramfs are cached under --cache and
@@ -15,12 +16,14 @@ set -euo pipefail
 cache=""
 timeout_s=180
 bins=()
+datas=()
 force_vm=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --cache) cache="$2"; shift 2 ;;
     --timeout) timeout_s="$2"; shift 2 ;;
     --bin) bins+=("$2"); shift 2 ;;
+    --data) datas+=("$2"); shift 2 ;;
     --vm) force_vm=1; shift ;;
     --) shift; break ;;
     *) echo "run_in_vm: unknown argument $1" >&2; exit 2 ;;
@@ -29,6 +32,7 @@ done
 [ $# -gt 0 ] || { echo "run_in_vm: no command given (after --)" >&2; exit 2; }
 die() { echo "run_in_vm: FAIL: $*" >&2; exit 1; }
 for b in "${bins[@]}"; do [ -x "$b" ] || die "test binary $b missing or not executable"; done
+for d in "${datas[@]}"; do [ -d "$d" ] || die "data folder $d missing"; done
 start_ns=$(date +%s%N)
 elapsed() { echo "$(( ($(date +%s%N) - start_ns) / 1000000 )) ms"; }
 
@@ -141,8 +145,18 @@ for b in "${bins[@]}"; do
   # debug info only makes the initramfs big and slow to pack
   strip --strip-debug "$work/root/opt/teleop/bin/$(basename "$b")" 2>/dev/null || true
 done
+# data: where an installed teleop has it, beside its bin/ (teleop::find_data)
+for d in "${datas[@]}"; do
+  mkdir -p "$work/root/opt/teleop/share/teleop"
+  cp -r "$d" "$work/root/opt/teleop/share/teleop/$(basename "$d")"
+done
 {
   printf 'cd /tmp\n'
+  # the sanitizer options of the test preset (e.g. the ASan build's new_delete_type_mismatch=0,
+  # for Fast DDS) hold in the VM too
+  for v in ASAN_OPTIONS UBSAN_OPTIONS TSAN_OPTIONS LSAN_OPTIONS; do
+    [ -n "${!v:-}" ] && printf 'export %s=%q\n' "$v" "${!v}"
+  done
   printf '%q ' "$@"
   printf '\n'
 } > "$work/root/opt/teleop/cmd.sh"

@@ -25,14 +25,10 @@ inline bool cansend(const std::string& frame) {
   return std::system(cmd.c_str()) == 0;
 }
 
-/// teleop_hand_emulator (or $TELEOP_HAND_EMULATOR) on the test interface, with extra arguments;
-/// stopped with SIGTERM when the object goes away.
-class EmulatorProcess {
+/// A program run from PATH with its arguments; stopped with SIGTERM when the object goes away.
+class ChildProcess {
  public:
-  explicit EmulatorProcess(const std::vector<std::string>& extra = {}) {
-    const char* env = std::getenv("TELEOP_HAND_EMULATOR");
-    std::vector<std::string> args = {env != nullptr ? env : "teleop_hand_emulator", "--interface", iface()};
-    args.insert(args.end(), extra.begin(), extra.end());
+  explicit ChildProcess(std::vector<std::string> args) {
     pid_ = ::fork();
     if (pid_ == 0) {
       std::vector<char*> argv;
@@ -42,11 +38,23 @@ class EmulatorProcess {
       std::_Exit(127);
     }
   }
-  ~EmulatorProcess() { stop(); }
-  EmulatorProcess(const EmulatorProcess&) = delete;
-  EmulatorProcess& operator=(const EmulatorProcess&) = delete;
+  ~ChildProcess() { stop(); }
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
 
   bool started() const { return pid_ > 0; }
+  /// True while it runs (false once it exited; the exit status is then collected).
+  bool running() {
+    if (pid_ <= 0) return false;
+    int status = 0;
+    if (::waitpid(pid_, &status, WNOHANG) == pid_) {
+      pid_ = -1;
+      return false;
+    }
+    return true;
+  }
+  /// Sends a signal (SIGUSR1: the emulator releases its object's support).
+  bool signal(int sig) const { return pid_ > 0 && ::kill(pid_, sig) == 0; }
   /// SIGTERM and wait; the wait status (-1 when not running).
   int stop() {
     if (pid_ <= 0) return -1;
@@ -59,6 +67,20 @@ class EmulatorProcess {
 
  private:
   pid_t pid_ = -1;
+};
+
+/// teleop_hand_emulator (or $TELEOP_HAND_EMULATOR) on the test interface, with extra arguments.
+class EmulatorProcess : public ChildProcess {
+ public:
+  explicit EmulatorProcess(const std::vector<std::string>& extra = {}) : ChildProcess(arguments(extra)) {}
+
+ private:
+  static std::vector<std::string> arguments(const std::vector<std::string>& extra) {
+    const char* env = std::getenv("TELEOP_HAND_EMULATOR");
+    std::vector<std::string> args = {env != nullptr ? env : "teleop_hand_emulator", "--interface", iface()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  }
 };
 
 }  // namespace teleop::can::test

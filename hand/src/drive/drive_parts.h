@@ -2,9 +2,12 @@
 // What an EmulatedDrive is made of: one object per responsibility, built once, in dependency
 // order, each given references to the parts it works with.
 
+#include <memory>
+
 #include "cia402_device.h"
 #include "drive_link.h"
 #include "fault_injection.h"
+#include "link_plant.h"
 #include "motor_model.h"
 #include "nmt_slave.h"
 #include "object_dictionary.h"
@@ -17,9 +20,12 @@ namespace teleop::hand {
 
 struct EmulatedDrive::Parts {
   /// `config` and `now_ns` are the drive's own: the parts read them (and SDO writes the gains).
-  Parts(can::CanBus& bus, EmulatedDriveConfig& config, const int64_t& now_ns)
-      : link(bus),
-        motor(config.motor, config.initial_position_rad, config.control.substep_s),
+  /// `plant`: what the motor turns; null: the drive's own link (LinkPlant).
+  Parts(can::CanBus& bus, EmulatedDriveConfig& config, const int64_t& now_ns, DrivePlant* plant)
+      : own_plant(plant == nullptr ? std::make_unique<drive::LinkPlant>(config.motor, config.initial_position_rad)
+                                   : nullptr),
+        link(bus),
+        motor(config.motor, plant == nullptr ? *own_plant : *plant, config.control.substep_s),
         servo(config.control, config.motor.supply_v, motor.measured_rad()),
         nmt(config.node_id, config.heartbeat_ms, link),
         device(config, servo, motor, nmt),
@@ -28,6 +34,7 @@ struct EmulatedDrive::Parts {
         objects({config, nmt, pdos, device, servo, motor, faults, now_ns}),
         sdo(config.node_id, link, nmt, faults) {}
 
+  std::unique_ptr<drive::LinkPlant> own_plant;  // null when the plant is someone else's
   drive::DriveLink link;
   drive::MotorModel motor;
   drive::ServoController servo;

@@ -14,10 +14,16 @@ using can::CanFrame;
 using can::NmtCommand;
 using can::NmtState;
 
-EmulatedDrive::EmulatedDrive(can::CanBus& bus, const EmulatedDriveConfig& config) : config_(config) {
+EmulatedDrive::EmulatedDrive(can::CanBus& bus, const EmulatedDriveConfig& config)
+    : EmulatedDrive(bus, config, nullptr) {}
+
+EmulatedDrive::EmulatedDrive(can::CanBus& bus, const EmulatedDriveConfig& config, DrivePlant& plant)
+    : EmulatedDrive(bus, config, &plant) {}
+
+EmulatedDrive::EmulatedDrive(can::CanBus& bus, const EmulatedDriveConfig& config, DrivePlant* plant) : config_(config) {
   drive::validate(config);
   substep_ns_ = std::max<int64_t>(1, std::llround(config.control.substep_s * 1e9));
-  parts_ = std::make_unique<Parts>(bus, config_, now_ns_);
+  parts_ = std::make_unique<Parts>(bus, config_, now_ns_, plant);
   reset_application();
   reset_communication();
 }
@@ -135,7 +141,7 @@ void EmulatedDrive::substep() {
   } else {
     p.motor.switch_off();
   }
-  p.motor.move_link(p.faults.stalled());
+  p.motor.turn(p.faults.stalled());
   p.device.advance_fault_reaction(substep_ns_);
 }
 

@@ -18,18 +18,18 @@ int16_t saturate_int16(double v) {
   return static_cast<int16_t>(std::lround(v));
 }
 
-MotorModel::MotorModel(const EmulatedMotorParams& params, double initial_position_rad, double substep_s)
+MotorModel::MotorModel(const EmulatedMotorParams& params, DrivePlant& plant, double substep_s)
     : params_(params),
+      plant_(plant),
       substep_s_(substep_s),
       ticks_per_rad_(params.encoder_ticks_per_rev * params.gear_ratio / (2.0 * M_PI)),
-      current_decay_(std::exp(-substep_s * params.resistance_ohm / params.inductance_h)),
-      q_rad_(initial_position_rad) {}
+      current_decay_(std::exp(-substep_s * params.resistance_ohm / params.inductance_h)) {}
 
-int32_t MotorModel::encoder_ticks() const { return saturate_int32(q_rad_ * ticks_per_rad_); }
+int32_t MotorModel::encoder_ticks() const { return saturate_int32(plant_.position_rad() * ticks_per_rad_); }
 
 void MotorModel::energise(double volts) {
   const EmulatedMotorParams& m = params_;
-  const double omega_motor = dq_radps_ * m.gear_ratio;
+  const double omega_motor = plant_.velocity_radps() * m.gear_ratio;
   const double duty = volts / m.supply_v;
   voltage_v_ = duty * m.supply_v;
   // winding: L di/dt = V - R i - k omega, exact for V and omega constant over the substep
@@ -42,26 +42,9 @@ void MotorModel::switch_off() {
   current_a_ = 0;
 }
 
-void MotorModel::move_link(bool stalled) {
+void MotorModel::turn(bool stalled) {
   const EmulatedMotorParams& m = params_;
-  if (stalled) {
-    dq_radps_ = 0;
-    return;
-  }
-  // J ddq = N eta k i - b dq + hard stops (a penalty spring-damper that only pushes)
-  double torque =
-      m.gear_ratio * m.gear_efficiency * m.torque_constant_nm_per_a * current_a_ - m.viscous_nms_per_rad * dq_radps_;
-  if (q_rad_ > m.stop_max_rad) {
-    torque += std::min(
-        0.0, -m.stop_stiffness_nm_per_rad * (q_rad_ - m.stop_max_rad) - m.stop_damping_nms_per_rad * dq_radps_);
-  } else if (q_rad_ < m.stop_min_rad) {
-    torque += std::max(
-        0.0, -m.stop_stiffness_nm_per_rad * (q_rad_ - m.stop_min_rad) - m.stop_damping_nms_per_rad * dq_radps_);
-  }
-  // the rotor's inertia appears at the output multiplied by the square of the gear ratio
-  const double inertia = m.link_inertia_kgm2 + m.rotor_inertia_kgm2 * m.gear_ratio * m.gear_ratio;
-  dq_radps_ += torque / inertia * substep_s_;
-  q_rad_ += dq_radps_ * substep_s_;
+  plant_.apply(m.gear_ratio * m.gear_efficiency * m.torque_constant_nm_per_a * current_a_, substep_s_, stalled);
 }
 
 }  // namespace teleop::hand::drive

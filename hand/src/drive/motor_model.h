@@ -1,28 +1,32 @@
 #pragma once
-// The drive's power stage and mechanics: a PWM bridge on a DC motor with a gearbox, driving a
-// finger link between two hard stops, and the incremental encoder the drive sees it through.
+// The drive's power stage and motor: a PWM bridge on a DC motor's winding, the motor's torque
+// through the gearbox onto the plant it turns (DrivePlant: the drive's own link, or a channel of
+// a shared simulation), and the incremental encoder the drive sees the plant's output through.
 // One substep at a time (the current loop's period); plain arithmetic, real-time safe.
 
 #include <cstdint>
 
+#include "teleop/hand/drive_plant.h"
 #include "teleop/hand/emulated_drive.h"
 
 namespace teleop::hand::drive {
 
 class MotorModel {
  public:
-  /// `params` must outlive the model (the drive's configuration).
-  MotorModel(const EmulatedMotorParams& params, double initial_position_rad, double substep_s);
+  /// `params` and `plant` must outlive the model (the drive's configuration and plant).
+  MotorModel(const EmulatedMotorParams& params, DrivePlant& plant, double substep_s);
 
   /// One substep with the bridge on at `volts` (an average PWM model: duty * supply).
   void energise(double volts);
   /// One substep with the bridge off: the current dies out through the free-wheeling diodes.
   void switch_off();
-  /// One substep of the link; a jammed (stalled) link does not move.
-  void move_link(bool stalled);
+  /// One substep of the plant under the motor's torque at the gearbox output,
+  /// gear ratio x efficiency x k_t x current; a jammed (stalled) plant does not move.
+  void turn(bool stalled);
 
-  double position_rad() const { return q_rad_; }
-  double velocity_radps() const { return dq_radps_; }
+  /// The plant's output angle [rad] and rate.
+  double position_rad() const { return plant_.position_rad(); }
+  double velocity_radps() const { return plant_.velocity_radps(); }
   double current_a() const { return current_a_; }
   double supply_v() const { return params_.supply_v; }
   /// Encoder ticks per output radian (ticks_per_rev * gear_ratio / 2 pi).
@@ -33,11 +37,10 @@ class MotorModel {
 
  private:
   const EmulatedMotorParams& params_;
+  DrivePlant& plant_;
   double substep_s_;
   double ticks_per_rad_;
   double current_decay_;  // exp(-dt R / L): the winding's response over one substep
-  double q_rad_;
-  double dq_radps_ = 0.0;
   double current_a_ = 0.0;
   double voltage_v_ = 0.0;
 };

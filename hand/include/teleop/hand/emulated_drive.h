@@ -9,7 +9,9 @@
 //     (position actual, current actual, statusword by default) sampled at SYNC; RPDO and TPDO
 //     mappings configurable over SDO, including dummy entries (several nodes sharing one RPDO)
 //   - inside: cascaded position PID (anti-windup, reference step limit) -> current PI
-//     (anti-windup) -> PWM -> a DC motor with gearbox and a finger link between hard stops
+//     (anti-windup) -> PWM -> a DC motor with gearbox turning its plant (DrivePlant): by
+//     default its own finger link between hard stops, or a channel of a shared simulation such
+//     as the MuJoCo hand (EmulatedHand keeps such drives and their plant in lock-step)
 //   - fault injection: silence the heartbeat, raise a fault with an EMCY code, jam the motor,
 //     drop or delay PDOs
 //
@@ -37,7 +39,8 @@
 //
 // Inside (hand/src/drive/), one part per responsibility, composed here: the object dictionary
 // (one table), the SDO server, the PDO engine, the NMT slave, the CiA 402 device side, the
-// servo controller, the motor model and fault injection.
+// servo controller, the motor model (winding, gearbox, encoder), the own link plant and fault
+// injection.
 
 #include <array>
 #include <cstdint>
@@ -46,10 +49,12 @@
 #include "teleop/can/can_bus.h"
 #include "teleop/can/cia301.h"
 #include "teleop/can/cia402.h"
+#include "teleop/hand/drive_plant.h"
 
 namespace teleop::hand {
 
-/// DC motor, gearbox and finger link (output side), with hard stops.
+/// DC motor and gearbox; the finger link (output side, with hard stops) is the drive's own plant
+/// when it is given none (rotor inertia and viscous friction then act at its output too).
 struct EmulatedMotorParams {
   double supply_v = 24.0;
   double resistance_ohm = 4.0;
@@ -93,7 +98,7 @@ struct EmulatedDriveConfig {
   uint32_t serial = 1;
   EmulatedMotorParams motor;
   EmulatedControllerParams control;
-  double initial_position_rad = 0.0;          // the encoder reads 0 at 0 rad
+  double initial_position_rad = 0.0;          // of the own link; the encoder reads 0 at 0 rad
   double rated_current_a = 1.0;               // 0x6075, unit of 0x6073 / 0x6078
   double max_current_a = 1.5;                 // default of 0x6073
   double peak_current_a = 3.0;                // hardware limit: 0x6073 cannot exceed it
@@ -125,7 +130,10 @@ class EmulatedDrive {
 
   /// Does not send anything yet: the boot-up message goes out on the first step().
   /// Throws std::invalid_argument for an invalid node id or non-physical parameters.
+  /// The motor turns the drive's own link (config.motor's link and stops).
   EmulatedDrive(can::CanBus& bus, const EmulatedDriveConfig& config);
+  /// The motor turns `plant` (which must outlive the drive); the encoder reads its angle.
+  EmulatedDrive(can::CanBus& bus, const EmulatedDriveConfig& config, DrivePlant& plant);
   ~EmulatedDrive();
   EmulatedDrive(const EmulatedDrive&) = delete;
   EmulatedDrive& operator=(const EmulatedDrive&) = delete;
@@ -146,7 +154,7 @@ class EmulatedDrive {
   int8_t mode_of_operation() const;
   uint16_t error_code() const;
   double time_s() const { return static_cast<double>(now_ns_) * 1e-9; }
-  /// True link angle [rad] (output side) and velocity, true motor current.
+  /// True plant angle [rad] (output side) and velocity, true motor current.
   double position_rad() const;
   double velocity_radps() const;
   double current_a() const;
@@ -182,6 +190,8 @@ class EmulatedDrive {
 
  private:
   struct Parts;  // hand/src/drive/drive_parts.h
+
+  EmulatedDrive(can::CanBus& bus, const EmulatedDriveConfig& config, DrivePlant* plant);
 
   void handle_frame(const can::CanFrame& frame);
   void handle_nmt(const can::NmtMessage& message);

@@ -202,6 +202,7 @@ class HandAdapter {
     size_t sdo_head = 0;
     size_t sdo_count = 0;
     bool sdo_busy = false;
+    uint8_t sdo_attempts = 0;  // sends of the write at the head
     int64_t sdo_sent_ns = 0;
     // control
     uint16_t controlword = 0;
