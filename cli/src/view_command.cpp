@@ -26,12 +26,13 @@ void ViewCommands::add_view(CLI::App& app) {
   view_ = app.add_subcommand(
       "view",
       "a window with the 3D scene of a node's config posed live from the bus: the follower solid, the twin "
-      "(and the leader's command) as ghosts, contacts and their forces (docs/view.md)");
+      "(and the leader's command) as ghosts, contacts and their forces; or the hand (docs/view.md)");
   view::ViewOptions& o = view_options_;
   view_
       ->add_option("-c,--config", o.config_path,
-                   "the follower or twin config whose scene to show and whose bus to join (domain, discovery, "
-                   "security); a file or a name in config/nodes (default: follower)")
+                   "the follower, twin or hand config whose scene to show and whose bus to join (domain, "
+                   "discovery, security); a file or a name in config/nodes (default: follower); a hand config "
+                   "shows the emulator's MuJoCo hand posed by teleop/hand/joint_state")
       ->transform(named_config("nodes"))
       ->check(CLI::ExistingFile);
   view_->add_option("--domain", o.domain_id, "DDS domain id (overrides the config)")->check(CLI::Range(0, 232));

@@ -83,10 +83,12 @@ class ViewProcessTest : public ::testing::Test {
 
   // `teleop view` on the follower's scene, small and without text, `frames` frames once every
   // shown topic delivered; the last one as `png`
+  std::string config = source("config/nodes/follower.yaml");
+
   ProcessResult view(const std::string& png, std::vector<std::string> extra = {}) const {
     std::vector<std::string> args = {"view",
                                      "-c",
-                                     source("config/nodes/follower.yaml"),
+                                     config,
                                      "--no-overlay",
                                      "--width",
                                      "320",
@@ -110,6 +112,7 @@ class StatePublisher {
   explicit StatePublisher(int domain) : participant_(bus_participant(domain, "view_test")) {
     follower_ = participant_.make_writer(transport::topics::kFollowerState);
     twin_ = participant_.make_writer(transport::topics::kTwinState);
+    hand_ = participant_.make_writer(transport::topics::kHandJoints);
     thread_ = std::thread([this] { loop(); });
   }
   ~StatePublisher() {
@@ -124,19 +127,24 @@ class StatePublisher {
     const std::lock_guard lock(mutex_);
     twin_q_ = q;
   }
+  void hand(const std::vector<double>& q) {
+    const std::lock_guard lock(mutex_);
+    hand_q_ = q;
+  }
 
  private:
   void loop() {
     msg::JointState s;
     uint64_t seq = 0;
     while (!stop_) {
-      std::vector<double> f, t;
+      std::vector<double> f, t, h;
       {
         const std::lock_guard lock(mutex_);
         f = follower_q_;
         t = twin_q_;
+        h = hand_q_;
       }
-      for (auto& [writer, q] : {std::pair{&follower_, f}, std::pair{&twin_, t}}) {
+      for (auto& [writer, q] : {std::pair{&follower_, f}, std::pair{&twin_, t}, std::pair{&hand_, h}}) {
         if (q.empty()) continue;
         s.header().seq(++seq);
         s.q_rad(q);
@@ -151,8 +159,9 @@ class StatePublisher {
   transport::Participant participant_;
   transport::Writer<msg::JointState> follower_;
   transport::Writer<msg::JointState> twin_;
+  transport::Writer<msg::JointState> hand_;
   std::mutex mutex_;
-  std::vector<double> follower_q_, twin_q_;
+  std::vector<double> follower_q_, twin_q_, hand_q_;
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };
@@ -208,6 +217,26 @@ TEST_F(ViewProcessTest, TheFollowersStateMovesThePictureAndTheGhostFollowsTheTwi
   ASSERT_EQ(d.exit_status, 0) << d.output;
   const Difference followed = difference(picture("c.png"), picture("d.png"));
   EXPECT_GT(followed.pixels, moved.pixels / 4) << "the ghost follows the twin";
+}
+
+// issue 20 item 5: the hand node's 20 joint angles pose the emulator's MuJoCo hand
+TEST_F(ViewProcessTest, TheHandsJointStateClosesItsFingersInThePicture) {
+  config = source("config/nodes/hand_mujoco.yaml");
+  StatePublisher bus(domain);
+  bus.hand(std::vector<double>(20, 0.0));
+  const ProcessResult open = view("open.png");
+  ASSERT_EQ(open.exit_status, 0) << open.output;
+  EXPECT_NE(open.output.find("svh_hand_grasp.xml"), std::string::npos) << open.output;
+  // every flexion joint 0.6 rad, the spreads 0.3: a closing hand
+  std::vector<double> closed(20, 0.6);
+  closed[17] = closed[18] = closed[19] = 0.3;
+  bus.hand(closed);
+  const ProcessResult shut = view("closed.png");
+  ASSERT_EQ(shut.exit_status, 0) << shut.output;
+  EXPECT_GT(difference(picture("open.png"), picture("closed.png")).pixels, 320 * 240 / 100)
+      << "the fingers closed by 0.6 rad";
+  // an arm's state does not pose the hand
+  EXPECT_EQ(open.output.find("teleop/twin"), std::string::npos) << open.output;
 }
 
 TEST_F(ViewProcessTest, ASignalClosesTheViewWithZero) {

@@ -40,6 +40,26 @@ TEST(PosedScene, ALayerIsShownOnlyOncePosedAndOnlyWithTheArmsJointCount) {
   EXPECT_FALSE(scene.posed(Layer::kFollower));
 }
 
+TEST(PosedScene, TheHandsJointsArePosedByNameCoupledOnesToo) {
+  PosedScene scene(spec("hand_mujoco.yaml"));
+  const mjModel* m = scene.model();
+  ASSERT_EQ(scene.arm_count(), 1u);
+  ASSERT_EQ(scene.joint_count(0), 20u);
+  std::array<double, 20> q{};
+  for (size_t i = 0; i < q.size(); ++i) q[i] = 0.01 * static_cast<double>(i + 1);
+  ASSERT_TRUE(scene.set_joints(Layer::kFollower, 0, q.data(), q.size()));
+  const mjData* d = scene.data(Layer::kFollower);
+  // j3 (index 1) is a coupled joint without an actuator; index_spread (18) is coupled to the
+  // finger spread
+  EXPECT_DOUBLE_EQ(d->qpos[m->jnt_qposadr[mj_name2id(m, mjOBJ_JOINT, "j3")]], q[1]);
+  EXPECT_DOUBLE_EQ(d->qpos[m->jnt_qposadr[mj_name2id(m, mjOBJ_JOINT, "index_spread")]], q[18]);
+  // the object is the emulator's, not one the follower tracks: it stays where the model has it
+  ASSERT_EQ(scene.free_bodies().size(), 1u);
+  EXPECT_TRUE(scene.moved_by_arms(m->jnt_bodyid[mj_name2id(m, mjOBJ_JOINT, "j17")]));
+  EXPECT_FALSE(scene.moved_by_arms(mj_name2id(m, mjOBJ_BODY, "svh_base_link")));
+  scene.update();
+}
+
 TEST(PosedScene, GhostsAreTheBodiesTheArmsMove) {
   PosedScene scene(spec("follower.yaml"));
   const mjModel* m = scene.model();

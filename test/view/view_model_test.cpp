@@ -43,13 +43,25 @@ TEST(ViewModel, TheTwinShowsItsOwnModel) {
   EXPECT_EQ(read_view_model(config("twin_box_task.yaml")).arms.size(), 2u);
 }
 
+TEST(ViewModel, TheHandShowsTheEmulatorsHandPosedByItsJointStateByName) {
+  const ViewModelSpec s = read_view_model(config("hand_mujoco.yaml"));
+  EXPECT_EQ(filename(s.model_path), "svh_hand_grasp.xml");
+  EXPECT_TRUE(std::filesystem::exists(s.model_path));
+  ASSERT_EQ(s.arms.size(), 1u);
+  EXPECT_EQ(s.arms[0].state_topic, "teleop/hand/joint_state");
+  ASSERT_EQ(s.arms[0].joint_names.size(), 20u);
+  EXPECT_EQ(s.arms[0].joint_names.front(), "Thumb_Flexion");
+  // the hand on the real bus (hand.yaml) is shown the same way
+  EXPECT_EQ(read_view_model(config("hand.yaml")).arms[0].joint_names, s.arms[0].joint_names);
+}
+
 TEST(ViewModel, AConfigWithoutAFollowerOrTwinIsRefusedNamingTheFile) {
   try {
     read_view_model(config("leader.yaml"));
     FAIL() << "expected a ConfigError";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("leader.yaml"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("no follower or twin section"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no follower, twin or hand section"), std::string::npos) << e.what();
   }
 }
 

@@ -56,8 +56,16 @@ BusLayers::BusLayers(transport::Participant& participant, const PosedScene& scen
     f.topic = topic;
     return f;
   };
+  bool arm_topics = false;
   for (size_t a = 0; a < scene.arm_count(); ++a) {
     const std::string& arm = scene.arm(a).name;
+    if (!scene.arm(a).state_topic.empty()) {
+      // posed by its own topic only (the hand): no twin, leader or wrench of it on the bus
+      const transport::TopicSpec<msg::JointState> spec{scene.arm(a).state_topic.c_str(), transport::QosPreset::kStream};
+      add(Layer::kFollower, a, spec.name).state = participant.make_reader(spec);
+      continue;
+    }
+    arm_topics = true;
     {
       const auto topic = transport::arm_topic(transport::topics::kFollowerState, arm);
       add(Layer::kFollower, a, topic.name()).state = participant.make_reader<msg::JointState>(topic);
@@ -82,7 +90,8 @@ BusLayers::BusLayers(transport::Participant& participant, const PosedScene& scen
       add(Layer::kLeader, a, state.name()).state = participant.make_reader<msg::JointState>(state);
     }
   }
-  for (size_t b = 0; b < scene.free_bodies().size(); ++b) {
+  // the follower tracks the objects of an arm's scene; the hand's object is the emulator's own
+  for (size_t b = 0; arm_topics && b < scene.free_bodies().size(); ++b) {
     const std::string topic = transport::topics::kFollowerObjectPosePrefix + scene.free_bodies()[b].name;
     const transport::TopicSpec<msg::ObjectPose> spec{topic.c_str(), transport::QosPreset::kStream};
     objects_.push_back(std::make_unique<ObjectFeed>());

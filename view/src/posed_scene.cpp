@@ -17,12 +17,38 @@ const char* layer_name(Layer layer) {
   return "?";
 }
 
+namespace {
+
+// joints posed by name (the hand's coupled joints have no actuator): hinge or slide joints, in the
+// order of `names`
+sim::ActuatedJoints named_joints(const mjModel* m, const std::string& model_name, const std::vector<std::string>& names) {
+  if (names.size() > sim::kMaxActuatedJoints) {
+    throw std::runtime_error("MuJoCo model '" + model_name + "': more than " +
+                             std::to_string(sim::kMaxActuatedJoints) + " joints to pose");
+  }
+  sim::ActuatedJoints joints;
+  for (const std::string& name : names) {
+    const int j = mj_name2id(m, mjOBJ_JOINT, name.c_str());
+    if (j < 0 || (m->jnt_type[j] != mjJNT_HINGE && m->jnt_type[j] != mjJNT_SLIDE)) {
+      throw std::runtime_error("MuJoCo model '" + model_name + "' has no hinge or slide joint '" + name + "'");
+    }
+    joints.qpos[joints.count] = m->jnt_qposadr[j];
+    joints.dof[joints.count] = m->jnt_dofadr[j];
+    joints.actuator[joints.count] = -1;
+    ++joints.count;
+  }
+  return joints;
+}
+
+}  // namespace
+
 PosedScene::PosedScene(const ViewModelSpec& spec) : spec_(spec), sim_(sim::MujocoModel::load(spec.model_path)) {
   const mjModel* m = sim_.model();
   if (!spec_.keyframe.empty()) keyframe_ = sim_.keyframe_id(spec_.keyframe);
   moved_by_arms_.assign(static_cast<size_t>(m->nbody), false);
   for (const ViewArm& arm : spec_.arms) {
-    joints_.push_back(sim::find_actuated_joints(m, spec_.model_path, arm.joint_prefix));
+    joints_.push_back(arm.joint_names.empty() ? sim::find_actuated_joints(m, spec_.model_path, arm.joint_prefix)
+                                              : named_joints(m, spec_.model_path, arm.joint_names));
     const std::string site = arm.ee_site.empty() ? arm.joint_prefix + "ee_site" : arm.ee_site;
     ee_sites_.push_back(mj_name2id(m, mjOBJ_SITE, site.c_str()));
     const sim::ActuatedJoints& j = joints_.back();

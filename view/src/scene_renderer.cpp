@@ -9,6 +9,9 @@ namespace {
 
 // room for the follower's scene, two ghosts of the arms and the contacts' decorations
 constexpr int kMaxGeoms = 6000;
+// MuJoCo's own free-camera angles (mjVisual.global defaults)
+constexpr float kMujocoAzimuthDeg = 90;
+constexpr float kMujocoElevationDeg = -45;
 
 }  // namespace
 
@@ -34,7 +37,10 @@ SceneRenderer::~SceneRenderer() {
 }
 
 void SceneRenderer::reset_camera() {
-  mjv_defaultFreeCamera(posed_->model(), &camera_);
+  const mjModel* m = posed_->model();
+  mjv_defaultFreeCamera(m, &camera_);
+  // a model that chose its own view (<visual><global azimuth elevation>: the hand's) keeps it
+  if (m->vis.global.azimuth != kMujocoAzimuthDeg || m->vis.global.elevation != kMujocoElevationDeg) return;
   // MuJoCo's default looks along +y from 45 deg above: the wall of the stiff-wall scene edge-on.
   // From behind the robot's left shoulder, a little above, both arms and what they touch are seen
   camera_.azimuth = 60;

@@ -2,6 +2,8 @@
 
 #include "teleop/common/config.h"
 #include "teleop/common/data_paths.h"
+#include "teleop/hand/hand_coupling.h"
+#include "teleop/transport/topics.h"
 
 namespace teleop::view {
 namespace {
@@ -20,6 +22,24 @@ std::vector<ViewArm> read_arms(const ConfigNode& section) {
     arms.push_back({"", "", control ? control->get_string("ee_site", "") : ""});
   }
   return arms;
+}
+
+// the hand node publishes its 20 joints (the coupling's output) on one topic; its config names
+// no model, the view shows the emulator's
+ViewModelSpec hand_view_model(const ConfigNode& root, const std::string& node_config_path) {
+  ViewModelSpec spec;
+  spec.source = node_config_path + " (hand)";
+  spec.model_path = find_data(kHandViewModel, kHandViewModel).string();
+  if (spec.model_path.empty()) {
+    throw root.error("hand", std::string("the hand's MuJoCo model was not found: looked in ") +
+                                 data_candidates_text(kHandViewModel, kHandViewModel, DataRoots::current()));
+  }
+  ViewArm hand;
+  hand.name = "hand";
+  hand.state_topic = transport::topics::kHandJoints.name;
+  for (const std::string_view joint : hand::kHandJointNames) hand.joint_names.emplace_back(joint);
+  spec.arms.push_back(hand);
+  return spec;
 }
 
 }  // namespace
@@ -48,8 +68,10 @@ ViewModelSpec read_view_model(const std::string& node_config_path) {
     spec.arms = read_arms(*twin);
     return spec;
   }
+  if (root.optional_child("hand")) return hand_view_model(root, node_config_path);
   throw root.error("follower",
-                   "no follower or twin section: `teleop view` shows the scene of a follower or twin config");
+                   "no follower, twin or hand section: `teleop view` shows the scene of a follower, twin or hand "
+                   "config");
 }
 
 std::string shipped_node_config(const std::string& name) {

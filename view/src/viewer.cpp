@@ -29,10 +29,20 @@ bool layer_read(Layer layer, const LayerChoice& choice) {
          (layer == Layer::kLeader && choice.leader);
 }
 
+// the ghosts exist for arms on the arm topics; a scene posed only by its own topics (the hand) has
+// none to show
+LayerChoice shown_layers(const PosedScene& scene, LayerChoice chosen) {
+  for (size_t a = 0; a < scene.arm_count(); ++a) {
+    if (scene.arm(a).state_topic.empty()) return chosen;
+  }
+  return {false, false};
+}
+
 }  // namespace
 
 int run_view(const ViewOptions& options, FILE* out) {
   PosedScene scene(read_view_model(options.config_path));
+  const LayerChoice layers = shown_layers(scene, options.layers);
   const transport::ParticipantConfig bus_config =
       transport::tool_participant_config(options.config_path, options.domain_id, "view");
   // the window before the bus: without a display nothing joins the domain
@@ -44,7 +54,7 @@ int run_view(const ViewOptions& options, FILE* out) {
   settings.contacts = options.contacts;
   settings.stereo = options.stereo;
   settings.shadows = options.shadows;
-  settings.layers = {true, options.layers.twin, options.layers.leader};
+  settings.layers = {true, layers.twin, layers.leader};
   if (!options.camera.empty()) {
     renderer.use_model_camera(options.camera);
   } else if (!std::isnan(options.azimuth_deg) || !std::isnan(options.elevation_deg) || options.distance_m > 0) {
@@ -55,10 +65,10 @@ int run_view(const ViewOptions& options, FILE* out) {
   ViewInput input(window, renderer, scene.model());
 
   transport::Participant participant(bus_config);
-  BusLayers bus(participant, scene, options.layers);
+  BusLayers bus(participant, scene, layers);
   std::string topics;
   for (Layer l : kLayers) {
-    if (layer_read(l, options.layers))
+    if (layer_read(l, layers))
       topics += fmt::format("{}{} ({})", topics.empty() ? "" : ", ", layer_name(l),
                             l == Layer::kFollower ? "solid" : "ghost");
   }
@@ -83,12 +93,12 @@ int run_view(const ViewOptions& options, FILE* out) {
     }
     const int64_t now_ns = monotonic_now_ns();
     bool ready = true;
-    for (Layer l : kLayers) ready = ready && (!layer_read(l, options.layers) || bus.complete(l));
+    for (Layer l : kLayers) ready = ready && (!layer_read(l, layers) || bus.complete(l));
     if (options.frames > 0 && !ready && options.wait_s > 0 &&
         now_ns - start_ns > static_cast<int64_t>(options.wait_s * 1e9)) {
       std::string missing;
       for (Layer l : kLayers) {
-        if (!layer_read(l, options.layers)) continue;
+        if (!layer_read(l, layers)) continue;
         const std::string m = bus.missing(l);
         if (!m.empty()) missing += (missing.empty() ? "" : ", ") + m;
       }

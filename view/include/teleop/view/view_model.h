@@ -14,6 +14,12 @@ struct ViewArm {
   std::string name;
   std::string joint_prefix;
   std::string ee_site;
+  /// Joints posed by name, in the samples' order (the hand's 20 joints, of which only the 9 main
+  /// ones have actuators); empty: the actuated joints with `joint_prefix`, in actuator order.
+  std::vector<std::string> joint_names;
+  /// The one topic whose JointState poses it, solid (the hand's teleop/hand/joint_state); empty:
+  /// the follower's, twin's and leader's arm topics.
+  std::string state_topic;
 };
 
 struct ViewModelSpec {
@@ -27,12 +33,17 @@ struct ViewModelSpec {
   std::string source;
 };
 
-/// Reads the scene of a follower or twin node config (a file): the follower's simulated world
+/// Reads the scene of a follower, twin or hand node config (a file): the follower's simulated world
 /// (`follower.mujoco.model`, or the controller's own `follower.control.model` of a real arm) or the
-/// twin's `twin.model.file`, its keyframe, and the arms of `<section>.arms`. Only these keys are
-/// read; the node itself checks the rest. Throws ConfigError naming the file and key when the
-/// config has none of these sections or a model that is missing.
+/// twin's `twin.model.file`, its keyframe, and the arms of `<section>.arms`; for a hand config
+/// (`hand:` section, whose node knows no model) the emulator's MuJoCo hand
+/// (config/models/svh_hand_grasp.xml), its 20 joints posed by name from teleop/hand/joint_state.
+/// Only these keys are read; the node itself checks the rest. Throws ConfigError naming the file
+/// and key when the config has none of these sections or a model that is missing.
 ViewModelSpec read_view_model(const std::string& node_config_path);
+
+/// The MuJoCo hand a hand config is shown on: the one `teleop_hand_emulator --plant mujoco` runs.
+inline constexpr const char* kHandViewModel = "config/models/svh_hand_grasp.xml";
 
 /// The shipped node config `name` (config/nodes/<name>.yaml, installed or in the source tree),
 /// whatever the working directory holds. Throws ConfigError saying where it looked.
