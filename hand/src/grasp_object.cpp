@@ -39,33 +39,30 @@ bool GraspObject::is_hand_geom(int geom) const {
   return false;
 }
 
-int GraspObject::hand_contacts() const {
+int GraspObject::hand_body_touching(const mjContact& c) const {
   const mjModel* m = hand_.model();
+  if (m->geom_bodyid[c.geom1] == body_ && is_hand_geom(c.geom2)) return m->geom_bodyid[c.geom2];
+  if (m->geom_bodyid[c.geom2] == body_ && is_hand_geom(c.geom1)) return m->geom_bodyid[c.geom1];
+  return -1;
+}
+
+int GraspObject::hand_contacts() const {
   const mjData* d = hand_.data();
   int count = 0;
-  for (int i = 0; i < d->ncon; ++i) {
-    const mjContact& c = d->contact[i];
-    const bool object1 = m->geom_bodyid[c.geom1] == body_;
-    const bool object2 = m->geom_bodyid[c.geom2] == body_;
-    if ((object1 && is_hand_geom(c.geom2)) || (object2 && is_hand_geom(c.geom1))) ++count;
-  }
+  for (int i = 0; i < d->ncon; ++i) count += hand_body_touching(d->contact[i]) >= 0 ? 1 : 0;
   return count;
 }
 
 int GraspObject::touching_links() const {
-  const mjModel* m = hand_.model();
   const mjData* d = hand_.data();
   // a grasp's contact list is short (tens): the distinct hand bodies in a fixed list, no allocation
   constexpr int kMaxLinks = 64;
   int seen[kMaxLinks];
   int links = 0;
   for (int i = 0; i < d->ncon && links < kMaxLinks; ++i) {
-    const mjContact& c = d->contact[i];
-    int other = -1;
-    if (m->geom_bodyid[c.geom1] == body_ && is_hand_geom(c.geom2)) other = m->geom_bodyid[c.geom2];
-    if (m->geom_bodyid[c.geom2] == body_ && is_hand_geom(c.geom1)) other = m->geom_bodyid[c.geom1];
-    if (other < 0 || std::find(seen, seen + links, other) != seen + links) continue;
-    seen[links++] = other;
+    const int link = hand_body_touching(d->contact[i]);
+    if (link < 0 || std::find(seen, seen + links, link) != seen + links) continue;
+    seen[links++] = link;
   }
   return links;
 }
@@ -75,10 +72,7 @@ double GraspObject::hand_contact_force_n() const {
   const mjData* d = hand_.data();
   double sum = 0.0;
   for (int i = 0; i < d->ncon; ++i) {
-    const mjContact& c = d->contact[i];
-    const bool object1 = m->geom_bodyid[c.geom1] == body_;
-    const bool object2 = m->geom_bodyid[c.geom2] == body_;
-    if (!((object1 && is_hand_geom(c.geom2)) || (object2 && is_hand_geom(c.geom1)))) continue;
+    if (hand_body_touching(d->contact[i]) < 0) continue;
     mjtNum force[6];
     mj_contactForce(m, d, i, force);
     sum += force[0];  // the normal component, in the contact frame

@@ -42,6 +42,8 @@ class GraspObject {
 
  private:
   bool is_hand_geom(int geom) const;
+  /// The hand's body in a contact between the object and the hand; -1 for any other contact.
+  int hand_body_touching(const mjContact& c) const;
 
   HandPlant& hand_;
   int body_ = -1;
