@@ -154,8 +154,9 @@ std::string format_parti_twin_markdown(const PartiTwinConfig& c, const std::vect
       << "Seeds " << runs.size() << " (one perturbed \"real\" robot each); cells: the mean over the seeds (their "
       << "range). Errors per phase of the real robot: free motion, contact (pressing and sliding), static "
       << "contact (in contact, end effector slower than " << format_number("%g", 1000 * c.static_speed_mps)
-      << " mm/s). Largest contact force: " << cell(spread(runs, [](const PartiTwinRun& r) { return r.peak_force_n; }))
-      << " N.\n\n## The twin against the real robot (PARTI Fig. 7)\n\n"
+      << " mm/s). Contact force in static contact: "
+      << cell(spread(runs, [](const PartiTwinRun& r) { return r.static_force_n; })) << " N; largest (the touchdown's "
+      << "impact): " << cell(spread(runs, [](const PartiTwinRun& r) { return r.peak_force_n; })) << " N.\n\n## The twin against the real robot (PARTI Fig. 7)\n\n"
       << "| phase | position error mean [mm] | max [mm] | contact-force error mean [N] | max [N] |\n"
       << "|---|---|---|---|---|\n";
   for (int p = 0; p < kPhaseCount; ++p) {

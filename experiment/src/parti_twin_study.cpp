@@ -249,6 +249,7 @@ PartiTwinRun run_parti_twin_case(const PartiTwinConfig& c, uint64_t seed) {
     }
     if (time < settle_s) continue;
     // static contact is contact too
+    if (phase == kStaticContact) run.static_force_n += f_real.norm();
     for (const int p : {phase, phase == kStaticContact ? static_cast<int>(kContact) : -1}) {
       if (p < 0) continue;
       add(run.position[p], run.position_mm.back());
@@ -256,6 +257,8 @@ PartiTwinRun run_parti_twin_case(const PartiTwinConfig& c, uint64_t seed) {
       for (int i = 0; i < kEstimatorCount; ++i) add(run.estimator[i][p], run.estimate_error_n[i].back());
     }
   }
+  const size_t n_static = run.position[kStaticContact].samples;
+  run.static_force_n = n_static > 0 ? run.static_force_n / static_cast<double>(n_static) : std::nan("");
   for (int p = 0; p < kPhaseCount; ++p) {
     finish(run.position[p]);
     finish(run.force[p]);

@@ -17,6 +17,7 @@ class PartiTraceError(Exception):
 MARGIN_COLUMNS = ("case", "activation_m", "t_s", "twin_margin_m", "physical_margin_m", "arms_m")
 TWIN_COLUMNS = ("seed", "t_s", "contact", "ee_position_mm", "ee_rotation_mrad", "force_error_n", "moment_error_nm",
                 "f_true_z_n", "f_twin_z_n")
+TEXT_COLUMNS = ("case", "phase")  # labels, not numbers
 ESTIMATORS = (("observer", "momentum observer (eqs. 6-8)", "tab:green"),
               ("parti_link", "PARTI eq. 5, τd = 0: g − τJ", "tab:red"),
               ("parti_command", "PARTI eq. 5, τd = eq. 4 command", "tab:purple"),
@@ -34,7 +35,7 @@ def read(path, required, key):
             for row in reader:
                 columns = runs.setdefault(row[key], {})
                 for name, value in row.items():
-                    if name != key:
+                    if name != key and name not in TEXT_COLUMNS:
                         columns.setdefault(name, []).append(float(value))
     except OSError as e:
         raise PartiTraceError(f"{path}: {e.strerror}") from e

@@ -139,8 +139,8 @@ TEST(MomentumObserver, HasSmallerErrorThanTheDirectEstimatorDuringMotion) {
   const MotionErrors encoder = run_motion(quantum);
   std::printf(
       "external torque during a 0.5 Hz joint sinusoid with a constant 12.2 N flange force (RMS of tau_ext %.3f Nm):\n"
-      "  exact q, dq:               observer RMS error %.4f Nm, direct (eq. 5) %.4f Nm\n"
-      "  20-bit encoder, dq by diff: observer RMS error %.4f Nm, direct (eq. 5) %.4f Nm\n",
+      "  exact q, dq:               observer RMS error %.4f Nm, direct (M ddq) %.4f Nm\n"
+      "  20-bit encoder, dq by diff: observer RMS error %.4f Nm, direct (M ddq) %.4f Nm\n",
       exact.truth_rms, exact.observer_rms, exact.direct_rms, encoder.observer_rms, encoder.direct_rms);
   // Exact state: the direct estimator pairs tau_{k-1} with M and n of the new state k, an O(h)
   // inconsistency the momentum balance of the observer does not have.

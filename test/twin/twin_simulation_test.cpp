@@ -111,6 +111,21 @@ TEST(TwinSimulation, LeavesJointFrictionOutOfTheRenderedTorqueUnlessAsked) {
   EXPECT_GT(friction_peak, 0.2) << "joint 1's frictionloss is 0.273 Nm";
 }
 
+TEST(TwinSimulation, MarginGeomsStartTheirContactAtTheActivationDistance) {
+  TwinModelConfig config = test::wall_model();
+  config.margin_spheres = {{"tip", "link7", {0, 0, 0.107}, 0.03}};
+  config.margin_planes = {{"guard", {0.6, 0, 0}, {-1, 0, 0}}};
+  config.margin_activation_m = 0.02;
+  const TwinSimulation sim(config);
+  const mjModel* m = sim.simulation().model();
+  for (const char* name : {"tip", "guard"}) {
+    const int g = mj_name2id(m, mjOBJ_GEOM, name);
+    ASSERT_GE(g, 0) << name;
+    EXPECT_DOUBLE_EQ(m->geom_margin[g], 0.02) << name;
+  }
+  EXPECT_DOUBLE_EQ(m->geom_margin[mj_name2id(m, mjOBJ_GEOM, "wall")], 0.0) << "the model's own geoms untouched";
+}
+
 // PARTI Fig. 5 (the margins keeping the operated hands apart): test/experiment/safety_margin_study_test.cpp
 
 TEST(TwinSimulation, StepsWithoutAllocating) {

@@ -84,7 +84,8 @@ struct PartiTwinRun {
   PhaseError position[kPhaseCount];
   PhaseError force[kPhaseCount];
   PhaseError estimator[kEstimatorCount][kPhaseCount];
-  double peak_force_n = 0.0;  ///< the real robot's largest contact force
+  double peak_force_n = 0.0;          ///< the real robot's largest contact force (the touchdown's impact)
+  double static_force_n = 0.0;        ///< its mean contact force in static contact
   int mujoco_warnings = 0;
 };
 
