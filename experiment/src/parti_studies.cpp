@@ -1,6 +1,7 @@
 #include "teleop/experiment/parti_studies.h"
 
 #include <cstdio>
+#include <stdexcept>
 
 #include "teleop/common/config.h"
 #include "teleop/experiment/parti_twin_study.h"
@@ -48,6 +49,7 @@ bool is_parti_study(const std::string& path) {
 }
 
 int run_parti_study(const std::string& path, const FidelityStudyOptions& options) {
+  if (!options.sequences.empty()) throw std::runtime_error(path + " has no sequences (--sequences is the thesis study's)");
   if (ConfigNode::load_file(path).has("parti_twin_study")) return run_twin(path, options);
   return run_margins(path, options);
 }

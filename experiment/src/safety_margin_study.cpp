@@ -67,7 +67,7 @@ class Operator {
   int left() const { return left_; }
   int right() const { return right_; }
 
-  void torque(const mjModel* m, mjData* d, teleop::JointVector& tau) {
+  void torque(const mjModel* m, const mjData* d, teleop::JointVector& tau) {
     tau.fill(0.0);
     const mjtNum* pl = d->site_xpos + 3 * left_;
     const mjtNum* pr = d->site_xpos + 3 * right_;
@@ -102,7 +102,7 @@ SafetyMarginResult run_safety_margin_case(const SafetyMarginScenario& s, const S
   twin::TwinSimulation physical(physical_config(s));
   twin::TwinSimulation twin(twin_config(s, c));
   const mjModel* m = physical.simulation().model();
-  mjData* d = const_cast<mjData*>(physical.simulation().data());  // mj_jacSite's scratch only
+  const mjData* d = physical.simulation().data();
   Operator op(m, s.push_n);
   const double dt = m->opt.timestep;
   LowPassFilter filter(s.lowpass_hz, 1.0 / dt);

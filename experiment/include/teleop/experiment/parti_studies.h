@@ -14,7 +14,8 @@ namespace teleop::experiment {
 bool is_parti_study(const std::string& path);
 
 /// Runs it (`options`: out_dir, seeds, plots), prints its report and where its files are.
-/// Returns 0 when no simulation raised a MuJoCo warning, else 1. Throws ConfigError for a bad file.
+/// Returns 0 when no simulation raised a MuJoCo warning, else 1. Throws ConfigError for a bad file,
+/// std::runtime_error when `options.sequences` names any (these studies have none).
 int run_parti_study(const std::string& path, const FidelityStudyOptions& options);
 
 }  // namespace teleop::experiment
