@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "config_option.h"
+#include "teleop/experiment/parti_studies.h"
 
 namespace teleop::cli {
 
@@ -13,7 +14,7 @@ FidelityStudyCommand::FidelityStudyCommand(CLI::App& app)
   command_
       ->add_option("study", study_path_,
                    "fidelity study YAML file, or its name in config/experiments (fidelity: "
-                   "config/experiments/fidelity.yaml)")
+                   "config/experiments/fidelity.yaml; PARTI's: parti_twin, safety_margins)")
       ->required()
       ->transform(named_config("experiments"))
       ->check(CLI::ExistingFile);
@@ -27,6 +28,8 @@ FidelityStudyCommand::FidelityStudyCommand(CLI::App& app)
 }
 
 int FidelityStudyCommand::run() const {
+  // PARTI's §3.1 and §3.2 studies (parti_twin, safety_margins): their own sections and reports
+  if (experiment::is_parti_study(study_path_)) return experiment::run_parti_study(study_path_, options_);
   const experiment::FidelityStudyConfig config = experiment::load_fidelity_study(study_path_);
   const experiment::FidelityStudyResult result = experiment::run_fidelity_study(config, options_);
   std::printf("%s", experiment::format_fidelity_markdown(config, result.runs).c_str());

@@ -1,6 +1,7 @@
 #include "teleop/control/estimators.h"
 
 #include <Eigen/Cholesky>
+#include <stdexcept>
 
 namespace teleop::control {
 
@@ -38,6 +39,18 @@ const JointVector& DirectEstimator::update(const ArmState& state, const JointVec
     estimate_ = gamma_ * raw + (1.0 - gamma_) * estimate_;
   }
   dq_prev_ = state.dq;
+  return estimate_;
+}
+
+PartiDirectEstimator::PartiDirectEstimator(ArmDynamics& dynamics, double gamma) : dyn_(&dynamics), gamma_(gamma) {
+  if (!(gamma > 0.0 && gamma <= 1.0)) throw std::invalid_argument("PartiDirectEstimator: gamma must be in (0, 1]");
+}
+
+const JointVector& PartiDirectEstimator::update(const JointVector& q, const JointVector& tau_d,
+                                                const JointVector& tau_m) {
+  // gravity only: the velocity does not enter eq. 5
+  dyn_->update(ArmState{q, JointVector::Zero()});
+  estimate_ = gamma_ * (tau_d - tau_m + dyn_->gravity()) + (1.0 - gamma_) * estimate_;
   return estimate_;
 }
 

@@ -21,6 +21,9 @@ sim::ActuatedJoints arm_joints(const sim::MujocoModel& model) {
 std::unique_ptr<control::Controller> make_controller(const FidelityStudyConfig& c, FidelityController kind,
                                                      control::ArmDynamics& dynamics) {
   if (kind == FidelityController::kStateSpace) return std::make_unique<control::PositionPd>(c.state_space);
+  if (kind == FidelityController::kCartesianImpedance) {
+    return std::make_unique<control::CartesianImpedance>(dynamics, c.cartesian_impedance);
+  }
   return std::make_unique<control::JointImpedance>(dynamics, c.joint_impedance);
 }
 
@@ -58,7 +61,12 @@ void FidelityArm::place(const control::JointVector& q_rad) {
 void FidelityArm::step(const RecordedCommand& command) {
   command_.q_d = command.q_d;
   command_.dq_d = command.dq_d;
-  const control::JointVector tau = controller_->compute(measured_, command_);
+  step(command_);
+}
+
+void FidelityArm::step(const control::ArmCommand& command) {
+  tau_commanded_ = controller_->compute(measured_, command);
+  const control::JointVector& tau = tau_commanded_;
   const mjModel* m = plant_.model();
   mjData* d = plant_.data();
   for (size_t i = 0; i < joints_.count; ++i) d->ctrl[joints_.actuator[i]] = tau[static_cast<int>(i)];

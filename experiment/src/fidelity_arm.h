@@ -31,6 +31,14 @@ class FidelityArm {
   /// One lock-step: the controller's torque for `command` on the last measurement, applied for one
   /// model timestep, then the new measurement. Real-time safe.
   void step(const RecordedCommand& command);
+  /// The same with a whole command (the Cartesian controller's pose and twist). Real-time safe.
+  void step(const control::ArmCommand& command);
+  /// The controller's torque of the last step (before the motors' limits).
+  const control::JointVector& tau_commanded() const { return tau_commanded_; }
+  /// The plant (its contacts of the last step: the true external forces).
+  const sim::MujocoModel& plant() const { return plant_; }
+  /// The arm's joints in the plant.
+  const sim::ActuatedJoints& joints() const { return joints_; }
 
   /// The measured joint state (after the last step; noisy on the real robot).
   const control::ArmState& measured() const { return measured_; }
@@ -57,6 +65,7 @@ class FidelityArm {
   control::ArmState measured_;
   control::ArmCommand command_;
   control::JointVector tau_ = control::JointVector::Zero();
+  control::JointVector tau_commanded_ = control::JointVector::Zero();
 };
 
 /// The end-effector pose by the nominal model's forward kinematics (what a robot reports from its

@@ -111,7 +111,12 @@ double largest_mean_error(const std::vector<double>& t_s, const std::vector<cont
 }  // namespace
 
 const char* controller_name(FidelityController controller) {
-  return controller == FidelityController::kStateSpace ? "state_space" : "joint_impedance";
+  switch (controller) {
+    case FidelityController::kStateSpace: return "state_space";
+    case FidelityController::kJointImpedance: return "joint_impedance";
+    case FidelityController::kCartesianImpedance: return "cartesian_impedance";
+  }
+  return "?";
 }
 
 const FidelityPose& FidelityStudyConfig::pose(const std::string& pose_name) const {

@@ -131,4 +131,9 @@ void plot_fidelity_study(const PlotTool& tool, const std::string& trace_csv, con
   run_package(tool, {"fidelity", trace_csv, segments_csv, out_dir}, trace_csv);
 }
 
+void plot_parti_study(const PlotTool& tool, const std::string& kind, const std::string& trace_csv,
+                      const std::string& out_dir) {
+  run_package(tool, {"parti", kind, trace_csv, out_dir}, trace_csv);
+}
+
 }  // namespace teleop::experiment

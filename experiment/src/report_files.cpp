@@ -2,6 +2,8 @@
 
 #include <stdlib.h>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -23,6 +25,13 @@ void write_text(const std::string& path, const std::string& text) {
   std::ofstream out(path);
   out << text;
   if (!out.flush()) throw std::runtime_error("cannot write " + path);
+}
+
+std::string format_number(const char* spec, double v) {
+  if (std::isnan(v)) return "–";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, spec, v);
+  return buf;
 }
 
 }  // namespace teleop::experiment

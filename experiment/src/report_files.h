@@ -10,6 +10,9 @@ namespace teleop::experiment {
 /// <temp>/<prefix>XXXXXX. Throws std::runtime_error when it cannot be made.
 std::string make_report_dir(const std::string& requested, const std::string& prefix);
 
+/// `v` printed with the printf `spec` ("%.3g"); NaN as "–" (tables).
+std::string format_number(const char* spec, double v);
+
 /// Writes `text` to `path`, replacing it. Throws std::runtime_error naming the path on failure.
 void write_text(const std::string& path, const std::string& text);
 

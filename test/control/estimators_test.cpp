@@ -139,8 +139,8 @@ TEST(MomentumObserver, HasSmallerErrorThanTheDirectEstimatorDuringMotion) {
   const MotionErrors encoder = run_motion(quantum);
   std::printf(
       "external torque during a 0.5 Hz joint sinusoid with a constant 12.2 N flange force (RMS of tau_ext %.3f Nm):\n"
-      "  exact q, dq:               observer RMS error %.4f Nm, direct (eq. 5) %.4f Nm\n"
-      "  20-bit encoder, dq by diff: observer RMS error %.4f Nm, direct (eq. 5) %.4f Nm\n",
+      "  exact q, dq:               observer RMS error %.4f Nm, direct (M ddq) %.4f Nm\n"
+      "  20-bit encoder, dq by diff: observer RMS error %.4f Nm, direct (M ddq) %.4f Nm\n",
       exact.truth_rms, exact.observer_rms, exact.direct_rms, encoder.observer_rms, encoder.direct_rms);
   // Exact state: the direct estimator pairs tau_{k-1} with M and n of the new state k, an O(h)
   // inconsistency the momentum balance of the observer does not have.
@@ -150,11 +150,97 @@ TEST(MomentumObserver, HasSmallerErrorThanTheDirectEstimatorDuringMotion) {
   EXPECT_LT(encoder.observer_rms, 1.1 * encoder.direct_rms);
 }
 
+// g(q) by MuJoCo itself (qfrc_bias at dq = 0), apart from ArmDynamics
+JointVector mujoco_gravity(const mjModel* m, mjData* d, const JointVector& q) {
+  for (int i = 0; i < kDof; ++i) {
+    d->qpos[i] = q[i];
+    d->qvel[i] = 0;
+  }
+  mj_forward(m, d);
+  JointVector g;
+  for (int i = 0; i < kDof; ++i) g[i] = d->qfrc_bias[i];
+  return g;
+}
+
+TEST(PartiDirectEstimator, IsEquationFiveOnKnownTorques) {
+  auto sim = panda();
+  ArmDynamics dyn(sim.model(), "ee_site");
+  const JointVector g = mujoco_gravity(sim.model(), sim.data(), ready_q());
+  JointVector tau_d;
+  tau_d << 1, -2, 3, -4, 5, -6, 7;
+  JointVector tau_m;
+  tau_m << 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5;
+  // gamma 1: no filter, eq. 5 itself
+  PartiDirectEstimator raw(dyn, 1.0);
+  const JointVector expected = tau_d - tau_m + g;
+  EXPECT_LT((raw.update(ready_q(), tau_d, tau_m) - expected).cwiseAbs().maxCoeff(), 1e-9);
+  // gamma 0.5 from 0: 0.5 x, then 0.75 x for a constant input
+  PartiDirectEstimator filtered(dyn, 0.5);
+  filtered.update(ready_q(), tau_d, tau_m);
+  EXPECT_LT((filtered.external_torque() - 0.5 * expected).cwiseAbs().maxCoeff(), 1e-9);
+  filtered.update(ready_q(), tau_d, tau_m);
+  EXPECT_LT((filtered.external_torque() - 0.75 * expected).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_THROW(PartiDirectEstimator(dyn, 0.0), std::invalid_argument);
+}
+
+// The arm at `q`, at rest (dq = 0), joint torque `tau_j` and a force `force` at the flange: the
+// true external torque J^T F and the acceleration MuJoCo's forward dynamics gives.
+struct RigidCase {
+  JointVector tau_ext;
+  JointVector ddq;
+};
+RigidCase forward_dynamics(sim::MujocoModel& sim, const JointVector& q, const JointVector& tau_j,
+                           const Eigen::Vector3d& force) {
+  const mjModel* m = sim.model();
+  mjData* d = sim.data();
+  mujoco_gravity(m, d, q);  // kinematics at q, dq = 0
+  const int site = sim.site_id("ee_site");
+  test::apply_site_force(m, d, site, force);
+  for (int i = 0; i < kDof; ++i) d->ctrl[i] = tau_j[i];
+  mj_forward(m, d);
+  ArmDynamics dyn(m, "ee_site");
+  dyn.update(ArmState{q, JointVector::Zero()});
+  RigidCase c;
+  c.tau_ext = dyn.jacobian().topRows<3>().transpose() * force;
+  for (int i = 0; i < kDof; ++i) c.ddq[i] = d->qacc[i];
+  mju_zero(d->xfrc_applied, 6 * m->nbody);
+  return c;
+}
+
+TEST(PartiDirectEstimator, WithTheLinkTorqueIsExactAtRestAndOffByTheInertiaWhenAccelerating) {
+  auto sim = panda();
+  ArmDynamics dyn(sim.model(), "ee_site");
+  PartiDirectEstimator direct(dyn, 1.0);
+  const Eigen::Vector3d force(8, -6, 10);
+  const JointVector q = ready_q();
+  const JointVector g = mujoco_gravity(sim.model(), sim.data(), q);
+  dyn.update(ArmState{q, JointVector::Zero()});
+  const JointVector tau_ext = dyn.jacobian().topRows<3>().transpose() * force;
+  // static: the joints hold gravity against the force, tau_J = g - J^T F; nothing accelerates
+  const JointVector tau_static = g - tau_ext;
+  const RigidCase at_rest = forward_dynamics(sim, q, tau_static, force);
+  EXPECT_LT(at_rest.ddq.cwiseAbs().maxCoeff(), 1e-6);
+  const JointVector zero = JointVector::Zero();
+  EXPECT_LT((direct.update(q, zero, tau_static) - at_rest.tau_ext).cwiseAbs().maxCoeff(), 1e-6);
+  // 2 Nm more on every joint: the arm accelerates, still at dq = 0 (no Coriolis term), and eq. 5
+  // reads the external torque minus M ddq
+  const JointVector tau_moving = tau_static + JointVector::Constant(2.0);
+  const RigidCase moving = forward_dynamics(sim, q, tau_moving, force);
+  EXPECT_GT(moving.ddq.cwiseAbs().maxCoeff(), 1.0) << "rad/s^2";
+  dyn.update(ArmState{q, JointVector::Zero()});
+  const JointVector inertia = dyn.mass() * moving.ddq;
+  const JointVector error = direct.update(q, zero, tau_moving) - moving.tau_ext;
+  EXPECT_LT((error + inertia).cwiseAbs().maxCoeff(), 1e-6) << "off by exactly -M ddq";
+  EXPECT_GT(inertia.cwiseAbs().maxCoeff(), 1.0) << "Nm: not a small difference";
+}
+
 TEST(Estimators, DoNotAllocateWhenUpdated) {
   auto sim = panda();
   ArmDynamics dyn(sim.model(), "ee_site");
   MomentumObserver observer(dyn, 0.001, JointVector::Constant(kObserverGain));
   DirectEstimator direct(dyn, 0.001, 0.1);
+  ArmDynamics dyn_parti(sim.model(), "ee_site");
+  PartiDirectEstimator parti(dyn_parti, 0.1);
   ArmState s = state_of(sim.data());
   observer.update(s, JointVector::Zero());
   direct.update(s, JointVector::Zero());
@@ -167,7 +253,8 @@ TEST(Estimators, DoNotAllocateWhenUpdated) {
       const JointVector tau = JointVector::Constant(0.01 * k);
       observer.update(s, tau);
       direct.update(s, tau);
-      sum += wrench_from_torque(dyn, observer.external_torque() + direct.external_torque());
+      parti.update(s.q, tau, -tau);
+      sum += wrench_from_torque(dyn, observer.external_torque() + direct.external_torque() + parti.external_torque());
     }
     EXPECT_EQ(counter.count(), 0u);
   }

@@ -17,7 +17,8 @@ std::string error_of(const std::string& yaml) { return test::config_error(parse_
 
 TEST(TwinConfig, ReadsModelMarginsAndPairs) {
   const TwinConfig c = parse_twin_config(ConfigNode::load_string(
-      twin_yaml("    safety_margins:\n      spheres: [{name: s, body: link7, pos_m: [0, 0, 0.1], radius_m: 0.05}]\n"
+      twin_yaml("    safety_margins:\n      activation_m: 0.02\n"
+                "      spheres: [{name: s, body: link7, pos_m: [0, 0, 0.1], radius_m: 0.05}]\n"
                 "      planes: [{name: p, point_m: [0.5, 0, 0], normal: [-1, 0, 0]}]\n"
                 "    contact_pairs: [{name: c, a: \"body:link7\", b: \"geom:wall\"}]\n",
                 "  mode: lockstep\n  lockstep: {timeout_ms: 200, steps: 10}\n"),
@@ -27,6 +28,7 @@ TEST(TwinConfig, ReadsModelMarginsAndPairs) {
   EXPECT_EQ(c.lockstep.steps, 10u);
   ASSERT_EQ(c.model.margin_spheres.size(), 1u);
   EXPECT_DOUBLE_EQ(c.model.margin_spheres[0].radius_m, 0.05);
+  EXPECT_DOUBLE_EQ(c.model.margin_activation_m, 0.02);
   ASSERT_EQ(c.model.margin_planes.size(), 1u);
   EXPECT_DOUBLE_EQ(c.model.margin_planes[0].normal[0], -1.0);
   ASSERT_EQ(c.model.contact_pairs.size(), 1u);

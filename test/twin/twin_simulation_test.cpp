@@ -1,5 +1,5 @@
 // The twin's simulation: coupling (PARTI eq. 2), constraint-torque rendering (eq. 3), safety
-// margins (§3.1, Fig. 5), observed contact wrenches and distances.
+// margin planes (§3.1), observed contact wrenches and distances.
 #include "teleop/twin/twin_simulation.h"
 
 #include <gtest/gtest.h>
@@ -7,7 +7,6 @@
 #include <cmath>
 
 #include "allocation_counter.h"
-#include "teleop/common/lowpass.h"
 #include "twin_test_util.h"
 
 namespace teleop::twin {
@@ -112,84 +111,22 @@ TEST(TwinSimulation, LeavesJointFrictionOutOfTheRenderedTorqueUnlessAsked) {
   EXPECT_GT(friction_peak, 0.2) << "joint 1's frictionloss is 0.273 Nm";
 }
 
-// PARTI Fig. 5: an operator drives the two hands of the two-arm body towards each other; margin
-// spheres around both end effectors exist only in the twin, which is coupled to the operated
-// (physical) robot and renders its constraint torque back on it.
-struct MarginReplay {
-  static constexpr double kRadius = 0.08;
-  static constexpr double kOperatorDamping = 6.0;  // Nms/rad
-  double min_physical_distance = 1.0;
-  double min_twin_distance = 1.0;
-  double final_physical_distance = 1.0;
-  int warnings = 0;
-
-  explicit MarginReplay(double feedback_gain) {
-    TwinModelConfig physical_config;
-    physical_config.model_path = test::model_path("dual_arm.xml");
-    physical_config.keyframe = "home";
-    TwinModelConfig twin_config = physical_config;
-    twin_config.coupling_stiffness_nm_per_rad = 1000;
-    twin_config.coupling_damping_nms_per_rad = 20;
-    // ee_site sits at (0, 0, 0.107) in link7
-    twin_config.margin_spheres = {{"left_margin", "left_link7", {0, 0, 0.107}, kRadius},
-                                  {"right_margin", "right_link7", {0, 0, 0.107}, kRadius}};
-    twin_config.distance_pairs = {{"hands", "geom:left_margin", "geom:right_margin"}};
-    TwinSimulation physical(physical_config);
-    TwinSimulation twin(twin_config);
-    const mjModel* m = physical.simulation().model();
-    mjData* d = physical.simulation().data();
-    const int left = mj_name2id(m, mjOBJ_SITE, "left_ee_site");
-    const int right = mj_name2id(m, mjOBJ_SITE, "right_ee_site");
-    std::vector<mjtNum> jac(3 * static_cast<size_t>(m->nv));
-    LowPassFilter filter(50.0, 1000.0);
-    JointVector tau{};
-    for (int k = 0; k < 3000; ++k) {
-      // the operator pushes each hand towards the other with 15 N
-      operator_torque(m, d, left, right, jac, tau);
-      const JointVector& rendered = filter.apply(twin.constraint_torque_nm(), twin.joints());
-      // the operator's arm damps the device's motion
-      for (size_t i = 0; i < physical.joints(); ++i) tau[i] += feedback_gain * rendered[i] - kOperatorDamping * physical.dq_radps()[i];
-      physical.step_torque(tau);
-      twin.step_coupled(physical.q_rad());
-      const double gap = test::distance(d->site_xpos + 3 * left, d->site_xpos + 3 * right) - 2 * kRadius;
-      min_physical_distance = std::min(min_physical_distance, gap);
-      min_twin_distance = std::min(min_twin_distance, twin.distance_m(0));
-      final_physical_distance = gap;
-    }
-    warnings = physical.warnings() + twin.warnings();
+TEST(TwinSimulation, MarginGeomsStartTheirContactAtTheActivationDistance) {
+  TwinModelConfig config = test::wall_model();
+  config.margin_spheres = {{"tip", "link7", {0, 0, 0.107}, 0.03}};
+  config.margin_planes = {{"guard", {0.6, 0, 0}, {-1, 0, 0}}};
+  config.margin_activation_m = 0.02;
+  const TwinSimulation sim(config);
+  const mjModel* m = sim.simulation().model();
+  for (const char* name : {"tip", "guard"}) {
+    const int g = mj_name2id(m, mjOBJ_GEOM, name);
+    ASSERT_GE(g, 0) << name;
+    EXPECT_DOUBLE_EQ(m->geom_margin[g], 0.02) << name;
   }
-
-  static void operator_torque(const mjModel* m, mjData* d, int left, int right, std::vector<mjtNum>& jac,
-                              JointVector& tau) {
-    tau.fill(0.0);
-    const mjtNum* pl = d->site_xpos + 3 * left;
-    const mjtNum* pr = d->site_xpos + 3 * right;
-    const double len = test::distance(pl, pr);
-    for (const auto& [site, sign] : {std::pair{left, 1.0}, std::pair{right, -1.0}}) {
-      mj_jacSite(m, d, jac.data(), nullptr, site);
-      for (int j = 0; j < m->nv; ++j) {
-        for (int r = 0; r < 3; ++r) tau[static_cast<size_t>(j)] += jac[static_cast<size_t>(r * m->nv + j)] * sign * 15.0 * (pr[r] - pl[r]) / len;
-      }
-    }
-  }
-};
-
-TEST(TwinSafetyMargins, KeepTheOperatedHandsApartWhenRendered) {
-  const MarginReplay replay(1.0);
-  RecordProperty("min_distance_m", std::to_string(replay.min_physical_distance));
-  RecordProperty("final_distance_m", std::to_string(replay.final_physical_distance));
-  // measured: -22 mm at the impact, -6.5 mm at rest (the coupling spring lambda K against the
-  // operator's 15 N, with no margin added for it)
-  EXPECT_GE(replay.min_physical_distance, -0.025) << "stated tolerance: 25 mm during the impact";
-  EXPECT_GE(replay.final_physical_distance, -0.01) << "stated tolerance: 10 mm at rest";
-  EXPECT_EQ(replay.warnings, 0);
-  EXPECT_GE(replay.min_twin_distance, -0.005) << "the twin's spheres themselves barely penetrate";
+  EXPECT_DOUBLE_EQ(m->geom_margin[mj_name2id(m, mjOBJ_GEOM, "wall")], 0.0) << "the model's own geoms untouched";
 }
 
-TEST(TwinSafetyMargins, AreCrossedWithoutRendering) {
-  const MarginReplay replay(0.0);
-  EXPECT_LT(replay.min_physical_distance, -0.05) << "nothing keeps the operated hands apart but their own flanges";
-}
+// PARTI Fig. 5 (the margins keeping the operated hands apart): test/experiment/safety_margin_study_test.cpp
 
 TEST(TwinSimulation, StepsWithoutAllocating) {
   TwinSimulation sim(test::wall_model());

@@ -36,6 +36,7 @@ void read_margins(const ConfigNode& section, TwinModelConfig& c) {
     c.margin_planes.push_back(
         {p.get_string("name"), read_vector3(p, "point_m", Range{-100, 100}), read_direction(p, "normal")});
   }
+  c.margin_activation_m = margins->get_double("activation_m", Range{0, 0.5}, c.margin_activation_m);
 }
 
 std::vector<GeomOffset> read_geom_offsets(const ConfigNode& section) {

@@ -11,10 +11,12 @@ namespace {
 // collision bit of the margins: no model uses it (parts/common.xml uses 1, 2, 4, 8)
 constexpr int kMarginBit = 16;
 
-std::string margin_attributes() {
+std::string margin_attributes(double activation_m) {
   std::ostringstream a;
+  a.precision(17);
   a << "contype=\"" << kMarginBit << "\" conaffinity=\"" << kMarginBit
-    << "\" condim=\"1\" density=\"0\" group=\"4\" solref=\"0.004 1\" rgba=\"1 0.5 0 0.3\"";
+    << "\" condim=\"1\" density=\"0\" group=\"4\" solref=\"0.004 1\" rgba=\"1 0.5 0 0.3\" margin=\""
+    << activation_m << "\"";
   return a.str();
 }
 
@@ -52,7 +54,7 @@ std::vector<sim::ModelAddition> margin_geometry(const TwinModelConfig& config) {
     std::ostringstream g;
     g.precision(17);
     g << "<geom name=\"" << s.name << "\" type=\"sphere\" size=\"" << s.radius_m << "\" pos=\"" << s.pos_m[0] << ' '
-      << s.pos_m[1] << ' ' << s.pos_m[2] << "\" " << margin_attributes() << "/>";
+      << s.pos_m[1] << ' ' << s.pos_m[2] << "\" " << margin_attributes(config.margin_activation_m) << "/>";
     additions.push_back({s.body, g.str()});
   }
   for (const MarginPlane& p : config.margin_planes) {
@@ -60,7 +62,7 @@ std::vector<sim::ModelAddition> margin_geometry(const TwinModelConfig& config) {
     g.precision(17);
     g << "<geom name=\"" << p.name << "\" type=\"plane\" size=\"2 2 0.1\" pos=\"" << p.point_m[0] << ' ' << p.point_m[1]
       << ' ' << p.point_m[2] << "\" zaxis=\"" << p.normal[0] << ' ' << p.normal[1] << ' ' << p.normal[2] << "\" "
-      << margin_attributes() << "/>";
+      << margin_attributes(config.margin_activation_m) << "/>";
     additions.push_back({"", g.str()});
   }
   return additions;

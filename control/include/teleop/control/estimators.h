@@ -50,7 +50,8 @@ class MomentumObserver {
   JointVector bias_prev_ = JointVector::Zero();
 };
 
-/// The "direct" baseline (PARTI eq. 5 in the form with the inertial terms):
+/// The direct estimator of Haddadin et al. 2017 *with* its inertial terms (not PARTI's eq. 5,
+/// which drops them: PartiDirectEstimator):
 ///   tau_ext = M(q) ddq + n(q, dq) - tau,   ddq = (dq_k - dq_{k-1}) / h,
 /// all at the current state, then low-passed: est = gamma tau_ext + (1 - gamma) est_prev.
 /// It differentiates the velocity once more, so it suffers from velocity noise and lags by a
@@ -68,6 +69,30 @@ class DirectEstimator {
   double gamma_;
   bool started_ = false;
   JointVector dq_prev_ = JointVector::Zero();
+  JointVector estimate_ = JointVector::Zero();
+};
+
+/// PARTI eq. 5, the estimator of Franka's Gazebo model (PARTI §3.2.1), with no inertial and no
+/// Coriolis term:
+///   tau_ext = tau_d - tau_m + g(q),   est = gamma tau_ext + (1 - gamma) est_prev,
+/// tau_d the torque the control law commanded, tau_m the measured joint torque, g(q) gravity of
+/// the estimator's model; est starts at 0 and its first update already filters (gamma in (0, 1]).
+/// Signs as PARTI prints them. What the result means depends on what is fed as tau_d and tau_m
+/// (docs/fidelity.md, "PARTI's direct estimator"): with tau_d = 0 and tau_m the link-side torque
+/// tau_J it is g(q) - tau_J, the direct estimator above without M ddq + C dq, exact at rest and
+/// off by -(M ddq + C dq) in motion.
+class PartiDirectEstimator {
+ public:
+  /// Throws std::invalid_argument unless 0 < gamma <= 1.
+  PartiDirectEstimator(ArmDynamics& dynamics, double gamma);
+  void reset() { estimate_.setZero(); }
+  /// Real-time safe. Updates `dynamics` at (q, 0) for g(q).
+  const JointVector& update(const JointVector& q, const JointVector& tau_d, const JointVector& tau_m);
+  const JointVector& external_torque() const { return estimate_; }
+
+ private:
+  ArmDynamics* dyn_;
+  double gamma_;
   JointVector estimate_ = JointVector::Zero();
 };
 

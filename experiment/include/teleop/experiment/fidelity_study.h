@@ -19,8 +19,10 @@
 namespace teleop::experiment {
 
 /// The thesis's two controllers (§3.5): "state space" (a stiff joint PD, control::PositionPd)
-/// and joint impedance with the controller's model's gravity (control::JointImpedance).
-enum class FidelityController { kStateSpace, kJointImpedance };
+/// and joint impedance with the controller's model's gravity (control::JointImpedance); and
+/// PARTI's eq. 4, task-space impedance with nullspace (control::CartesianImpedance: the PARTI
+/// twin study's, parti_twin_study.h).
+enum class FidelityController { kStateSpace, kJointImpedance, kCartesianImpedance };
 const char* controller_name(FidelityController controller);
 
 struct FidelityPose {
@@ -53,6 +55,7 @@ struct FidelityStudyConfig {
   double trace_period_s = 0.01;
   control::PositionPd::Gains state_space;
   control::JointImpedance::Gains joint_impedance;
+  control::CartesianImpedance::Gains cartesian_impedance;
   sim::PerturbationSpec perturbation;
   sim::SensorNoiseSpec sensor_noise;
 

@@ -52,4 +52,10 @@ void plot_hand_study(const PlotTool& tool, const std::string& trace_csv, const s
 void plot_fidelity_study(const PlotTool& tool, const std::string& trace_csv, const std::string& segments_csv,
                          const std::string& out_dir);
 
+/// Writes the figures of a PARTI study (docs/fidelity.md) into `out_dir`: `kind` "margins" (the
+/// distances over time, beside the paper's Fig. 5) or "twin" (the error norms and the estimators
+/// over time, beside Figs. 6-7). Throws PlotError.
+void plot_parti_study(const PlotTool& tool, const std::string& kind, const std::string& trace_csv,
+                      const std::string& out_dir);
+
 }  // namespace teleop::experiment

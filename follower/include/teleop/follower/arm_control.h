@@ -1,7 +1,7 @@
 #pragma once
 // The follower's control stack for one 7-DoF arm, on teleop::control: the four modes of
 // msg::ControlMode behind a bumpless ControllerSwitch, and the external-torque estimators
-// (momentum observer, PARTI eqs. 6-7; the direct estimate of eq. 5 as a baseline) with the
+// (momentum observer, PARTI eqs. 6-7; the direct estimate with M ddq as a baseline) with the
 // end-effector wrench from them (eq. 8). It computes on its own model of the arm (like a real
 // robot's controller), independent of what the hardware is.
 

@@ -56,6 +56,10 @@ struct TwinModelConfig {
   bool render_joint_friction = false;
   std::vector<MarginSphere> margin_spheres;
   std::vector<MarginPlane> margin_planes;
+  /// The margins' contact starts this far before their surfaces touch (MuJoCo's geom `margin`):
+  /// the soft contact's spring then balances with the surfaces this much apart instead of inside
+  /// each other. 0: at touch. Sizing it: docs/twin.md "Safety margins".
+  double margin_activation_m = 0.0;
   std::vector<GeomPair> contact_pairs;
   std::vector<GeomPair> distance_pairs;
   std::vector<GeomOffset> geom_offsets;
