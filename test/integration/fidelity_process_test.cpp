@@ -6,6 +6,7 @@
 
 #include <filesystem>
 
+#include "figure_check.h"
 #include "process_helpers.h"
 #include "teleop/experiment/plots.h"
 
@@ -63,12 +64,7 @@ TEST(FidelityStudyProcess, WritesTheReportBesideTheThesisAndItsFiguresAndRepeats
     figures.push_back(dir + "/one/fidelity_" + name + ".png");
     EXPECT_NE(first.output.find("wrote " + figures.back()), std::string::npos) << first.output;
   }
-  std::vector<std::string> check = {
-      "/usr/bin/env", experiment::find_plot_tool().python, "-B", source("test/integration/png_check.py"), "1200", "800",
-      "10000"};
-  check.insert(check.end(), figures.begin(), figures.end());
-  const ProcessResult drawn = run_process(check, std::chrono::seconds(60));
-  EXPECT_EQ(drawn.exit_status, 0) << drawn.output;
+  expect_figures_drawn(figures);
 
   // the same seeds again, no figures: the same tables, digit for digit
   const ProcessResult second =

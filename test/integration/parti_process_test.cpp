@@ -4,20 +4,12 @@
 // drawn. About 8 s, most of it the figures.
 #include <gtest/gtest.h>
 
+#include "figure_check.h"
 #include "process_helpers.h"
 #include "teleop/experiment/plots.h"
 
 namespace teleop::test {
 namespace {
-
-void expect_drawn(const std::vector<std::string>& figures) {
-  std::vector<std::string> check = {
-      "/usr/bin/env", experiment::find_plot_tool().python, "-B", source("test/integration/png_check.py"), "1200", "800",
-      "10000"};
-  check.insert(check.end(), figures.begin(), figures.end());
-  const ProcessResult drawn = run_process(check, std::chrono::seconds(60));
-  EXPECT_EQ(drawn.exit_status, 0) << drawn.output;
-}
 
 TEST(PartiStudyProcess, SafetyMarginsReproducesTheDocsTableAndDrawsFigFive) {
   const std::string dir = make_temp_dir();
@@ -30,7 +22,7 @@ TEST(PartiStudyProcess, SafetyMarginsReproducesTheDocsTableAndDrawsFigFive) {
   EXPECT_NE(report.find("| activation_25mm | 25.0 | 23.6 | 25.0 | 3.6 | 18.0 | 160.0 | 0 |"), std::string::npos)
       << report;
   EXPECT_NE(read_file(dir + "/safety_margins_trace.csv").find("case,activation_m,t_s,"), std::string::npos);
-  expect_drawn({dir + "/safety_margins_distance.png"});
+  expect_figures_drawn({dir + "/safety_margins_distance.png"});
 }
 
 TEST(PartiStudyProcess, TwinStudyReproducesTheDocsTablesAndDrawsItsFigures) {
@@ -47,7 +39,7 @@ TEST(PartiStudyProcess, TwinStudyReproducesTheDocsTablesAndDrawsItsFigures) {
       << report;
   EXPECT_NE(report.find("g(q) − τ_J | 10.8 (10–12.1) | 39.5 (37.4–43) |"), std::string::npos) << report;
   EXPECT_NE(read_file(dir + "/parti_twin_phases.csv").find("seed,phase,samples,"), std::string::npos);
-  expect_drawn({dir + "/parti_twin_errors.png", dir + "/parti_twin_estimators.png"});
+  expect_figures_drawn({dir + "/parti_twin_errors.png", dir + "/parti_twin_estimators.png"});
 }
 
 }  // namespace

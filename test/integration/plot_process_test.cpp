@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "figure_check.h"
 #include "process_helpers.h"
 #include "teleop/experiment/plots.h"
 
@@ -12,10 +13,6 @@ namespace teleop::test {
 namespace {
 namespace fs = std::filesystem;
 
-// as scripts/teleop_plot/figure_style.py draws them
-constexpr const char* kWidthPx = "1200";
-constexpr const char* kHeightPx = "800";
-constexpr const char* kMinBytes = "10000";
 const std::vector<std::string> kRunFigures = {"position", "force", "tdpa_energy", "lateness", "states"};
 
 std::vector<std::string> pngs(const std::string& dir, const std::string& prefix,
@@ -23,16 +20,6 @@ std::vector<std::string> pngs(const std::string& dir, const std::string& prefix,
   std::vector<std::string> out;
   for (const std::string& n : names) out.push_back(dir + "/" + prefix + n + ".png");
   return out;
-}
-
-// every file exists and png_check.py finds it drawn
-void expect_drawn(const std::vector<std::string>& files) {
-  for (const std::string& f : files) EXPECT_TRUE(fs::exists(f)) << f;
-  std::vector<std::string> argv = {"/usr/bin/env", experiment::find_plot_tool().python, "-B",
-                                   source("test/integration/png_check.py"), kWidthPx, kHeightPx, kMinBytes};
-  argv.insert(argv.end(), files.begin(), files.end());
-  const ProcessResult r = run_process(argv, std::chrono::seconds(60));
-  EXPECT_EQ(r.exit_status, 0) << r.output;
 }
 
 // 2 s of the stiff wall under PFC+TDPA (so every figure has its columns): the run's five figures
@@ -56,7 +43,7 @@ TEST(PlotProcess, TheExperimentDrawsItsRunsAndMetricsAndPlotDrawsARunAgain) {
   for (const std::string& f : pngs(dir + "/out", "tiny_", {"force_felt_n", "tracking_rmse_m", "mad_rad"})) {
     figures.push_back(f);
   }
-  expect_drawn(figures);
+  expect_figures_drawn(figures);
 
   const ProcessResult plot =
       run_process({bin("teleop"), "plot", run_dir, "-o", dir + "/again"}, std::chrono::seconds(60));
