@@ -5,6 +5,7 @@
   python3 scripts/teleop_plot hand TRACE_CSV [OUT_DIR]  the hand study's trace -> OUT_DIR/hand_tip_force.png, hand_joints.png
   python3 scripts/teleop_plot fidelity TRACE_CSV SEGMENTS_CSV [OUT_DIR]
                                                        the fidelity study's -> OUT_DIR/fidelity_<sequence>_*.png
+  python3 scripts/teleop_plot wiping WIPES_CSV [OUT_DIR] the wiping study's -> OUT_DIR/wiping_torque_peaks.png
 
 Exit status: 0 done (figures whose columns a run lacks are skipped with a message), 1 an error
 (no trace in the dir, a file that cannot be read), 2 bad arguments, 3 no matplotlib.
@@ -33,6 +34,9 @@ def main():
     fidelity.add_argument("csv")
     fidelity.add_argument("segments")
     fidelity.add_argument("out_dir", nargs="?", help="default: the CSV's folder")
+    wiping = commands.add_parser("wiping", help="the wiping study's figure from its wipes CSV")
+    wiping.add_argument("csv")
+    wiping.add_argument("out_dir", nargs="?", help="default: the CSV's folder")
     args = parser.parse_args()
     try:
         import matplotlib  # noqa: F401  (only to say clearly that it is missing)
@@ -47,6 +51,7 @@ def main():
     from results_figures import ResultsError, results_figures
     from run_figures import FIGURES, Skip
     from run_traces import Run, TraceError
+    from wiping_figures import WipingCsvError, wiping_figures
 
     def write(figures, out_dir, prefix=""):
         os.makedirs(out_dir, exist_ok=True)
@@ -63,13 +68,15 @@ def main():
                     print(f"teleop plot: skipped {name}: {why} ({args.run_dir})")
         elif args.command == "fidelity":
             write(fidelity_figures(args.csv, args.segments), args.out_dir or os.path.dirname(os.path.abspath(args.csv)))
+        elif args.command == "wiping":
+            write(wiping_figures(args.csv), args.out_dir or os.path.dirname(os.path.abspath(args.csv)))
         elif args.command == "hand":
             write(hand_figures(args.csv), args.out_dir or os.path.dirname(os.path.abspath(args.csv)))
         else:
             stem = os.path.splitext(os.path.basename(args.csv))[0]
             out_dir = args.out_dir or os.path.dirname(os.path.abspath(args.csv))
             write(results_figures(args.csv, stem), out_dir, stem + "_")
-    except (TraceError, ResultsError, HandTraceError, FidelityTraceError, OSError) as e:
+    except (TraceError, ResultsError, HandTraceError, FidelityTraceError, WipingCsvError, OSError) as e:
         print(f"teleop plot: {e}", file=sys.stderr)
         return EXIT_ERROR
     return 0
