@@ -48,6 +48,8 @@ def wiping_figures(path):
     fig, axes = new_figure(len(angles), "Wiping study: peak external torque per joint and sweep cell "
                            "(momentum observer; thesis Table 4.4)")
     width = 0.8 / len(heights)
+    # one scale for every row: the angles compare at a glance
+    top = 1.1 * max([max(c["peaks"]) for c in cells.values()] + list(THESIS_REAL_PEAKS_NM.values()))
     for ax, angle in zip(axes, angles):
         for k, height in enumerate(heights):
             cell = cells.get((angle, height))
@@ -58,6 +60,7 @@ def wiping_figures(path):
             ax.bar(xs, cell["peaks"], width, label=label)
         for joint, peak in THESIS_REAL_PEAKS_NM.items():
             ax.plot([joint - 0.45, joint + 0.45], [peak, peak], "k--", linewidth=1)
+        ax.set_ylim(0, top)
         ax.set_ylabel("|tau_ext| peak [N m]")
         ax.set_title(f"wiper x-angle {angle:g} rad (dashed: Justin's real peaks, J0 and J3, first contact)",
                      fontsize=10)
