@@ -39,9 +39,9 @@ int FidelityStudyCommand::run_wiping() const {
   const experiment::WipingStudyConfig config = experiment::load_wiping_study(study_path_);
   const experiment::WipingStudyResult result = experiment::run_wiping_study(config, options);
   std::printf("%s", experiment::format_wiping_markdown(config, result.cells).c_str());
-  std::printf("\nsweep: %zu cells in %d worker processes, %.2f s wall\nreport: %s\nwipes: %s\ntiming: %s\n",
+  std::printf("\nsweep: %zu cells in %d worker processes, %.2f s wall\nreport: %s\nwipes: %s\ntrace: %s\ntiming: %s\n",
               result.cells.size(), result.jobs, result.wall_time_s, result.markdown.c_str(), result.wipes_csv.c_str(),
-              result.timing_csv.c_str());
+              result.trace_csv.c_str(), result.timing_csv.c_str());
   if (!result.plot_error.empty()) std::printf("[fidelity-study] warning: no figures: %s\n", result.plot_error.c_str());
   if (!result.sound()) std::printf("RESULT: FAILED (a cell failed or raised MuJoCo warnings, see the wipes CSV)\n");
   return result.sound() ? 0 : 1;

@@ -131,8 +131,9 @@ void plot_fidelity_study(const PlotTool& tool, const std::string& trace_csv, con
   run_package(tool, {"fidelity", trace_csv, segments_csv, out_dir}, trace_csv);
 }
 
-void plot_wiping_study(const PlotTool& tool, const std::string& wipes_csv, const std::string& out_dir) {
-  run_package(tool, {"wiping", wipes_csv, out_dir}, wipes_csv);
+void plot_wiping_study(const PlotTool& tool, const std::string& wipes_csv, const std::string& trace_csv,
+                       const std::string& out_dir) {
+  run_package(tool, {"wiping", wipes_csv, trace_csv, out_dir}, wipes_csv);
 }
 
 }  // namespace teleop::experiment

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <stdexcept>
 
 #include "sweep_parameters.h"
@@ -76,7 +77,17 @@ void record(const twin::TwinSimulation& sim, const control::JointVector& tau_ext
   }
 }
 
-WipingCell run(const WipingStudyConfig& c, double angle_rad, double height_m) {
+// the trace's rows: one every kTracePeriodSteps steps
+constexpr int kTracePeriodSteps = 10;
+
+void trace_row(std::ofstream& out, const WipingCell& cell, double t_s, const control::JointVector& tau_ext,
+               double force_n, double hand_z_m) {
+  out << cell.wiper_angle_rad << ',' << cell.panel_height_m << ',' << t_s;
+  for (int i = 0; i < control::kDof; ++i) out << ',' << tau_ext[i];
+  out << ',' << force_n << ',' << hand_z_m << '\n';
+}
+
+WipingCell run(const WipingStudyConfig& c, double angle_rad, double height_m, const std::string& trace_path) {
   WipingCell cell;
   cell.wiper_angle_rad = angle_rad;
   cell.panel_height_m = height_m;
@@ -100,6 +111,11 @@ WipingCell run(const WipingStudyConfig& c, double angle_rad, double height_m) {
   cell.wipes.assign(windows.size(), WipeOutcome{});
   const int steps = static_cast<int>(std::lround(plan.duration_s() / dt));
   const double free_from_s = windows.front().first;
+  std::ofstream trace;
+  if (!trace_path.empty()) {
+    trace.open(trace_path);
+    trace.precision(6);
+  }
   const auto t0 = std::chrono::steady_clock::now();
   for (int k = 0; k < steps; ++k) {
     const HandSetPoint set_point = plan.at(k * dt);
@@ -123,6 +139,9 @@ WipingCell run(const WipingStudyConfig& c, double angle_rad, double height_m) {
       if (t >= windows[i].first && t <= windows[i].second) wipe = &cell.wipes[i];
     }
     if (wipe != nullptr || t >= free_from_s) record(sim, tau_ext, force, c.contact_force_n, wipe, cell.free_tau_ext_peak_nm);
+    if (trace.is_open() && (k + 1) % kTracePeriodSteps == 0) {
+      trace_row(trace, cell, t, tau_ext, force, dynamics.ee_position().z());
+    }
   }
   for (WipeOutcome& w : cell.wipes) w.mean_force_n /= std::max(1, w.contact_steps);
   cell.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -139,9 +158,14 @@ int WipingCell::contacts() const {
   return n;
 }
 
-WipingCell run_wiping_cell(const WipingStudyConfig& config, double wiper_angle_rad, double panel_height_m) {
+const char* const kWipingTraceColumns =
+    "wiper_angle_rad,panel_height_m,t_s,tau_ext_j0_nm,tau_ext_j1_nm,tau_ext_j2_nm,tau_ext_j3_nm,tau_ext_j4_nm,"
+    "tau_ext_j5_nm,tau_ext_j6_nm,force_n,hand_z_m";
+
+WipingCell run_wiping_cell(const WipingStudyConfig& config, double wiper_angle_rad, double panel_height_m,
+                           const std::string& trace_path) {
   try {
-    return run(config, wiper_angle_rad, panel_height_m);
+    return run(config, wiper_angle_rad, panel_height_m, trace_path);
   } catch (const std::exception& e) {
     WipingCell failed;
     failed.wiper_angle_rad = wiper_angle_rad;

@@ -1,6 +1,9 @@
 // The wiping study's sweep (its cells in worker processes, sweep_workers.h) and its outputs.
 #include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "report_files.h"
 #include "sweep_workers.h"
@@ -64,16 +67,32 @@ std::string timing_csv(const WipingStudyResult& r) {
   return o.str();
 }
 
+template <typename Part>
+void join_traces(const std::string& path, size_t cells, const Part& part) {
+  std::ofstream out(path);
+  out << kWipingTraceColumns << '\n';
+  for (size_t i = 0; i < cells; ++i) {
+    std::ifstream in(part(i));
+    if (in) out << in.rdbuf();
+    in.close();
+    std::filesystem::remove(part(i));
+  }
+  if (!out) throw std::runtime_error("cannot write " + path);
+}
+
 }  // namespace
 
-std::vector<WipingCell> run_wiping_sweep(const WipingStudyConfig& config) {
+std::vector<WipingCell> run_wiping_sweep(const WipingStudyConfig& config, const std::string& trace_csv) {
   std::vector<std::pair<double, double>> grid;
   for (double angle : config.wiper_angle.values) {
     for (double height : config.panel_height.values) grid.emplace_back(angle, height);
   }
+  // each cell's trace in a part file of its own beside the result, joined in grid order below
+  const auto part = [&](size_t i) { return trace_csv.empty() ? std::string() : trace_csv + ".cell" + std::to_string(i); };
   const std::vector<std::string> lines = run_in_workers(grid.size(), config.jobs, [&](size_t i) {
-    return encode(run_wiping_cell(config, grid[i].first, grid[i].second));
+    return encode(run_wiping_cell(config, grid[i].first, grid[i].second, part(i)));
   });
+  if (!trace_csv.empty()) join_traces(trace_csv, grid.size(), part);
   std::vector<WipingCell> cells;
   for (size_t i = 0; i < grid.size(); ++i) {
     if (lines[i].empty()) {
@@ -100,11 +119,12 @@ WipingStudyResult run_wiping_study(WipingStudyConfig config, const WipingStudyOp
   if (options.jobs > 0) config.jobs = options.jobs;
   WipingStudyResult result;
   result.jobs = config.jobs;
+  result.out_dir = make_report_dir(options.out_dir, "teleop-wiping-" + config.name + "-");
+  result.trace_csv = result.out_dir + "/wiping_trace.csv";
   const auto start = std::chrono::steady_clock::now();
-  result.cells = run_wiping_sweep(config);
+  result.cells = run_wiping_sweep(config, result.trace_csv);
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  result.out_dir = make_report_dir(options.out_dir, "teleop-wiping-" + config.name + "-");
   result.wipes_csv = result.out_dir + "/wiping_wipes.csv";
   result.timing_csv = result.out_dir + "/wiping_timing.csv";
   result.markdown = result.out_dir + "/wiping.md";
@@ -113,7 +133,7 @@ WipingStudyResult run_wiping_study(WipingStudyConfig config, const WipingStudyOp
   write_text(result.markdown, format_wiping_markdown(config, result.cells));
   if (options.plots) {
     try {
-      plot_wiping_study(find_plot_tool(), result.wipes_csv, result.out_dir);
+      plot_wiping_study(find_plot_tool(), result.wipes_csv, result.trace_csv, result.out_dir);
     } catch (const PlotError& e) {
       result.plot_error = e.what();
     }

@@ -5,7 +5,8 @@
   python3 scripts/teleop_plot hand TRACE_CSV [OUT_DIR]  the hand study's trace -> OUT_DIR/hand_tip_force.png, hand_joints.png
   python3 scripts/teleop_plot fidelity TRACE_CSV SEGMENTS_CSV [OUT_DIR]
                                                        the fidelity study's -> OUT_DIR/fidelity_<sequence>_*.png
-  python3 scripts/teleop_plot wiping WIPES_CSV [OUT_DIR] the wiping study's -> OUT_DIR/wiping_torque_peaks.png
+  python3 scripts/teleop_plot wiping WIPES_CSV TRACE_CSV [OUT_DIR]
+                                                       the wiping study's -> OUT_DIR/wiping_*.png
 
 Exit status: 0 done (figures whose columns a run lacks are skipped with a message), 1 an error
 (no trace in the dir, a file that cannot be read), 2 bad arguments, 3 no matplotlib.
@@ -34,8 +35,9 @@ def main():
     fidelity.add_argument("csv")
     fidelity.add_argument("segments")
     fidelity.add_argument("out_dir", nargs="?", help="default: the CSV's folder")
-    wiping = commands.add_parser("wiping", help="the wiping study's figure from its wipes CSV")
+    wiping = commands.add_parser("wiping", help="the wiping study's figures from its wipes and trace CSVs")
     wiping.add_argument("csv")
+    wiping.add_argument("trace")
     wiping.add_argument("out_dir", nargs="?", help="default: the CSV's folder")
     args = parser.parse_args()
     try:
@@ -69,7 +71,7 @@ def main():
         elif args.command == "fidelity":
             write(fidelity_figures(args.csv, args.segments), args.out_dir or os.path.dirname(os.path.abspath(args.csv)))
         elif args.command == "wiping":
-            write(wiping_figures(args.csv), args.out_dir or os.path.dirname(os.path.abspath(args.csv)))
+            write(wiping_figures(args.csv, args.trace), args.out_dir or os.path.dirname(os.path.abspath(args.csv)))
         elif args.command == "hand":
             write(hand_figures(args.csv), args.out_dir or os.path.dirname(os.path.abspath(args.csv)))
         else:

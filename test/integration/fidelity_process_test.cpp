@@ -108,11 +108,14 @@ TEST(WipingStudyProcess, WritesTablesBesideTheThesisAndItsFigureAndRepeatsThemWi
   EXPECT_NE(report.find("J0: 14/12/8 N m, J3: 8/8/6 N m"), std::string::npos) << report;
   EXPECT_NE(first.output.find("sweep: 9 cells in 2 worker processes"), std::string::npos) << first.output;
 
-  const std::string figure = dir + "/two/wiping_torque_peaks.png";
-  EXPECT_NE(first.output.find("wrote " + figure), std::string::npos) << first.output;
-  const ProcessResult drawn = run_process({"/usr/bin/env", experiment::find_plot_tool().python, "-B",
-                                           source("test/integration/png_check.py"), "1200", "800", "10000", figure},
-                                          std::chrono::seconds(60));
+  std::vector<std::string> check = {
+      "/usr/bin/env", experiment::find_plot_tool().python, "-B", source("test/integration/png_check.py"), "1200", "800",
+      "10000"};
+  for (const std::string name : {"torque_peaks", "torques_over_time", "hand_height"}) {
+    check.push_back(dir + "/two/wiping_" + name + ".png");
+    EXPECT_NE(first.output.find("wrote " + check.back()), std::string::npos) << first.output;
+  }
+  const ProcessResult drawn = run_process(check, std::chrono::seconds(60));
   EXPECT_EQ(drawn.exit_status, 0) << drawn.output;
 
   // one worker: the same cells, byte for byte
@@ -121,6 +124,7 @@ TEST(WipingStudyProcess, WritesTablesBesideTheThesisAndItsFigureAndRepeatsThemWi
   ASSERT_EQ(second.exit_status, 0) << second.output;
   EXPECT_EQ(read_file(dir + "/one/wiping.md"), report);
   EXPECT_EQ(read_file(dir + "/one/wiping_wipes.csv"), read_file(dir + "/two/wiping_wipes.csv"));
+  EXPECT_EQ(read_file(dir + "/one/wiping_trace.csv"), read_file(dir + "/two/wiping_trace.csv"));
 }
 
 }  // namespace

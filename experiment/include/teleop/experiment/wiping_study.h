@@ -99,12 +99,19 @@ struct WipingCell {
   int contacts() const;
 };
 
-/// Simulates one cell. Never throws: a failure is reported in `error`.
-WipingCell run_wiping_cell(const WipingStudyConfig& config, double wiper_angle_rad, double panel_height_m);
+/// The header of a cell's trace (kTraceColumns): every 10 ms the estimated external torque of
+/// each joint, the contact force and the hand's height (the thesis's Figs. 4.13 and 4.15).
+extern const char* const kWipingTraceColumns;
+
+/// Simulates one cell; with a `trace_path`, writes its trace there as CSV rows without a header.
+/// Never throws: a failure is reported in `error`.
+WipingCell run_wiping_cell(const WipingStudyConfig& config, double wiper_angle_rad, double panel_height_m,
+                           const std::string& trace_path = "");
 
 /// Every cell, the angle varying slowest, in config.jobs worker processes (a cell whose worker
-/// died has that error). Forks; throws std::runtime_error when no worker can be started.
-std::vector<WipingCell> run_wiping_sweep(const WipingStudyConfig& config);
+/// died has that error). With a `trace_csv` path, writes every cell's trace into it, in grid
+/// order under one header. Forks; throws std::runtime_error when no worker can be started.
+std::vector<WipingCell> run_wiping_sweep(const WipingStudyConfig& config, const std::string& trace_csv = "");
 
 struct WipingStudyOptions {
   std::string out_dir;  ///< default: a new folder in /tmp
@@ -119,6 +126,7 @@ struct WipingStudyResult {
   std::string out_dir;
   std::string wipes_csv;   ///< one row per cell and wipe (deterministic)
   std::string timing_csv;  ///< per cell wall time, and the sweep's
+  std::string trace_csv;   ///< every cell's torques over time (deterministic)
   std::string markdown;    ///< Tables 4.3 and 4.4 in shape, the thesis's beside ours
   std::string plot_error;  ///< why no figures were drawn ("" when they were, or not asked for)
   /// Every cell ran, without a MuJoCo warning.
