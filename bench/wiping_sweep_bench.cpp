@@ -2,8 +2,8 @@
 // each repeated, and whether every worker count gives the same cells (it must: each cell is a
 // fresh simulation). A driver, not a Google Benchmark: one sweep takes seconds.
 //   teleop_wiping_sweep_bench [--study wiping] [--jobs 1,2] [--repeats 3]
-#include <CLI/CLI.hpp>
 #include <sys/resource.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <chrono>

@@ -18,11 +18,13 @@ PressScenario read_press(const ConfigNode& s) {
 
 SweepParameter read_sweep_parameter(const ConfigNode& p) {
   SweepParameter param{p.get_string("name"), p.get_string("set"), p.get_double_list("values", Range{-1e6, 1e6})};
-  static const std::regex kSet("(geom_pos_[xyz]|body_pos_[xyz]|geom_friction|body_angle_x):[A-Za-z0-9_.-]+|press_depth_m");
+  static const std::regex kSet(
+      "(geom_pos_[xyz]|body_pos_[xyz]|geom_friction|body_angle_x):[A-Za-z0-9_.-]+|press_depth_m");
   if (!std::regex_match(param.set, kSet)) {
-    throw p.error("set", "expected geom_pos_x|y|z:NAME, body_pos_x|y|z:NAME, geom_friction:NAME, body_angle_x:NAME or "
-                             "press_depth_m, got '" +
-                             param.set + "'");
+    throw p.error("set",
+                  "expected geom_pos_x|y|z:NAME, body_pos_x|y|z:NAME, geom_friction:NAME, body_angle_x:NAME or "
+                  "press_depth_m, got '" +
+                      param.set + "'");
   }
   if (param.values.empty()) throw p.error("values", "needs at least one value");
   return param;

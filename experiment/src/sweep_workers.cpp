@@ -35,7 +35,8 @@ void collect(const std::string& path, std::vector<std::string>& lines) {
 }  // namespace
 
 std::vector<std::string> run_in_workers(size_t cells, int jobs, const std::function<std::string(size_t)>& run_cell) {
-  const std::string dir = (std::filesystem::temp_directory_path() / ("teleop_sweep_" + std::to_string(getpid()))).string();
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("teleop_sweep_" + std::to_string(getpid()))).string();
   std::filesystem::create_directories(dir);
   std::vector<pid_t> workers;
   for (int w = 0; w < jobs; ++w) {

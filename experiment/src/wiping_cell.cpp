@@ -67,7 +67,8 @@ void record(const twin::TwinSimulation& sim, const control::JointVector& tau_ext
   }
   wipe->tau_ext_peak_nm = wipe->tau_ext_peak_nm.cwiseMax(tau_ext.cwiseAbs());
   for (int i = 0; i < control::kDof; ++i) {
-    wipe->constraint_peak_nm[i] = std::max(wipe->constraint_peak_nm[i], std::abs(sim.constraint_torque_nm()[static_cast<size_t>(i)]));
+    wipe->constraint_peak_nm[i] =
+        std::max(wipe->constraint_peak_nm[i], std::abs(sim.constraint_torque_nm()[static_cast<size_t>(i)]));
   }
   wipe->peak_force_n = std::max(wipe->peak_force_n, force_n);
   if (sim.contact_count(0) > 0 && force_n > threshold_n) {
@@ -132,13 +133,15 @@ WipingCell run(const WipingStudyConfig& c, double angle_rad, double height_m, co
     // the observer sees what the joints were told to apply, bias compensation included: tau
     const control::JointVector& tau_ext = observer.update(arm_state(sim), tau);
     const twin::Wrench w = sim.contact_wrench(0);
-    const double force = std::sqrt(w.force_n[0] * w.force_n[0] + w.force_n[1] * w.force_n[1] + w.force_n[2] * w.force_n[2]);
+    const double force =
+        std::sqrt(w.force_n[0] * w.force_n[0] + w.force_n[1] * w.force_n[1] + w.force_n[2] * w.force_n[2]);
     const double t = (k + 1) * dt;
     WipeOutcome* wipe = nullptr;
     for (size_t i = 0; i < windows.size(); ++i) {
       if (t >= windows[i].first && t <= windows[i].second) wipe = &cell.wipes[i];
     }
-    if (wipe != nullptr || t >= free_from_s) record(sim, tau_ext, force, c.contact_force_n, wipe, cell.free_tau_ext_peak_nm);
+    if (wipe != nullptr || t >= free_from_s)
+      record(sim, tau_ext, force, c.contact_force_n, wipe, cell.free_tau_ext_peak_nm);
     if (trace.is_open() && (k + 1) % kTracePeriodSteps == 0) {
       trace_row(trace, cell, t, tau_ext, force, dynamics.ee_position().z());
     }

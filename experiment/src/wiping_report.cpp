@@ -63,7 +63,8 @@ std::string peaks_text(const WipingCell& c) {
 }
 
 template <typename Cell>
-void grid_table(std::ostringstream& o, const WipingStudyConfig& config, const std::vector<WipingCell>& cells, Cell cell) {
+void grid_table(std::ostringstream& o, const WipingStudyConfig& config, const std::vector<WipingCell>& cells,
+                Cell cell) {
   o << "| wiper x-angle \\ panel height |";
   for (double h : config.panel_height.values) o << ' ' << fixed(h, 3) << " m |";
   o << "\n|---|";

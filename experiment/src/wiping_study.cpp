@@ -63,7 +63,7 @@ std::string timing_csv(const WipingStudyResult& r) {
     o << c.wiper_angle_rad << ',' << c.panel_height_m << ',' << c.sim_time_s << ',' << c.wall_time_s << ','
       << (c.wall_time_s > 0 ? c.sim_time_s / c.wall_time_s : 0.0) << '\n';
   }
-  o << "sweep,jobs=" << r.jobs << ",,"  << r.wall_time_s << ",\n";
+  o << "sweep,jobs=" << r.jobs << ",," << r.wall_time_s << ",\n";
   return o.str();
 }
 
@@ -88,7 +88,9 @@ std::vector<WipingCell> run_wiping_sweep(const WipingStudyConfig& config, const 
     for (double height : config.panel_height.values) grid.emplace_back(angle, height);
   }
   // each cell's trace in a part file of its own beside the result, joined in grid order below
-  const auto part = [&](size_t i) { return trace_csv.empty() ? std::string() : trace_csv + ".cell" + std::to_string(i); };
+  const auto part = [&](size_t i) {
+    return trace_csv.empty() ? std::string() : trace_csv + ".cell" + std::to_string(i);
+  };
   const std::vector<std::string> lines = run_in_workers(grid.size(), config.jobs, [&](size_t i) {
     return encode(run_wiping_cell(config, grid[i].first, grid[i].second, part(i)));
   });

@@ -28,7 +28,9 @@ WipingTrajectory::WipingTrajectory(const WipingPlan& plan, const PanelFrame& pan
   const Eigen::Matrix3d hand_rotation = tool_rotation_ * tool_in_hand.linear().transpose();
   const Eigen::Quaterniond q_hand(hand_rotation);
   // the hand where the tool site is at `tool`
-  const auto hand_at = [&](const Eigen::Vector3d& tool) { return Eigen::Vector3d(tool - hand_rotation * tool_in_hand.translation()); };
+  const auto hand_at = [&](const Eigen::Vector3d& tool) {
+    return Eigen::Vector3d(tool - hand_rotation * tool_in_hand.translation());
+  };
   const auto tool_point = [&](double u, double v, double n) {
     return Eigen::Vector3d(panel.centre + u * panel.u + v * panel.v + n * panel.n);
   };

@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "sweep_parameters.h"
@@ -86,6 +89,27 @@ TEST(WipingStudy, ReportPutsTheThesisTablesBesideOurs) {
   EXPECT_NE(md.find("J0: 4.2/4.2/4.2 N m"), std::string::npos) << md;
   const std::string csv = format_wiping_csv({touched, missed});
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 7) << "a header and one row per cell and wipe";
+}
+
+TEST(WipingStudyFile, RejectsASweptParameterThatDoesNotChangeTheModelNamingTheKey) {
+  std::ifstream in(source("config/experiments/wiping.yaml"));
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  const std::string from = "\"body_angle_x:wiper\"";
+  ASSERT_NE(yaml.find(from), std::string::npos);
+  yaml.replace(yaml.find(from), from.size(), "press_depth_m");
+  // the model by absolute path: the copy lives elsewhere
+  yaml.replace(yaml.find("../models/"), 3, source("config/"));
+  const std::string path = (std::filesystem::temp_directory_path() / "wiping_study_test_bad.yaml").string();
+  std::ofstream(path) << yaml;
+  try {
+    load_wiping_study(path);
+    FAIL() << "accepted a parameter of the press scenario";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("wiping_study.wiper_angle.set"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(path);
 }
 
 }  // namespace

@@ -49,11 +49,11 @@ struct WipingStudyConfig {
   std::string name;
   std::string file;
   twin::TwinModelConfig model;
-  std::string hand_site = "ee_site";   ///< the commanded frame: the flange
-  std::string tool_site = "tool_site"; ///< the wiping face's centre
-  std::string panel_geom = "panel";    ///< a box: its +z face is the surface
-  WipingParameter wiper_angle;         ///< the sweep's rows (Table 4.3's)
-  WipingParameter panel_height;        ///< its columns
+  std::string hand_site = "ee_site";    ///< the commanded frame: the flange
+  std::string tool_site = "tool_site";  ///< the wiping face's centre
+  std::string panel_geom = "panel";     ///< a box: its +z face is the surface
+  WipingParameter wiper_angle;          ///< the sweep's rows (Table 4.3's)
+  WipingParameter panel_height;         ///< its columns
   WipingPlan plan;
   double translational_stiffness_n_per_m = 1500.0;
   double rotational_stiffness_nm_per_rad = 60.0;
