@@ -26,11 +26,10 @@ control::ArmState arm_state(const twin::TwinSimulation& sim) {
   return s;
 }
 
-Eigen::Isometry3d site_pose(const mjModel* m, const mjData* d, int site) {
+Eigen::Isometry3d site_pose(const mjData* d, int site) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.translation() = Eigen::Map<const Eigen::Vector3d>(d->site_xpos + 3 * site);
   pose.linear() = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d->site_xmat + 9 * site);
-  (void)m;
   return pose;
 }
 
@@ -46,9 +45,10 @@ WipingTrajectory make_plan(const WipingStudyConfig& c, twin::TwinSimulation& sim
   set_world(c, c.wiper_angle.planned, c.panel_height.planned, sim);
   const mjModel* m = sim.simulation().model();
   const mjData* d = sim.simulation().data();
-  const Eigen::Isometry3d hand = site_pose(m, d, sim.simulation().site_id(c.hand_site));
-  const Eigen::Isometry3d tool = site_pose(m, d, sim.simulation().site_id(c.tool_site));
+  const Eigen::Isometry3d hand = site_pose(d, sim.simulation().site_id(c.hand_site));
+  const Eigen::Isometry3d tool = site_pose(d, sim.simulation().site_id(c.tool_site));
   const int panel = sim.simulation().geom_id(c.panel_geom);
+  // the box's axes: z its normal, x up its slope (the scene tilts it about y), y across
   const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> r(d->geom_xmat + 9 * panel);
   PanelFrame frame;
   frame.n = r.col(2);

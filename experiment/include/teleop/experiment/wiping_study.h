@@ -51,7 +51,7 @@ struct WipingStudyConfig {
   twin::TwinModelConfig model;
   std::string hand_site = "ee_site";    ///< the commanded frame: the flange
   std::string tool_site = "tool_site";  ///< the wiping face's centre
-  std::string panel_geom = "panel";     ///< a box: its +z face is the surface
+  std::string panel_geom = "panel";     ///< a box: its +z face the surface, its x axis up the slope
   WipingParameter wiper_angle;          ///< the sweep's rows (Table 4.3's)
   WipingParameter panel_height;         ///< its columns
   WipingPlan plan;
@@ -89,8 +89,9 @@ struct WipingCell {
   double wiper_angle_rad = 0.0;
   double panel_height_m = 0.0;
   std::vector<WipeOutcome> wipes;
-  /// max |tau_ext| per joint outside the wipes (after the reach): the estimate's level in free
-  /// motion (the thesis's "deviations outside of contact phases") [N m]
+  /// max |tau_ext| per joint outside the wipes, from the first wipe on (between the wipes and
+  /// after the last; the reach to the panel left out): the estimate's level in free motion (the
+  /// thesis's "deviations outside of contact phases") [N m]
   control::JointVector free_tau_ext_peak_nm = control::JointVector::Zero();
   double sim_time_s = 0.0;
   double wall_time_s = 0.0;
