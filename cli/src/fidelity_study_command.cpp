@@ -1,6 +1,7 @@
 #include "fidelity_study_command.h"
 
 #include <cstdio>
+#include <stdexcept>
 
 #include "config_option.h"
 
@@ -29,7 +30,16 @@ FidelityStudyCommand::FidelityStudyCommand(CLI::App& app)
       ->check(CLI::Range(1, 64));
 }
 
-int FidelityStudyCommand::run() const { return experiment::is_wiping_study(study_path_) ? run_wiping() : run_accuracy(); }
+int FidelityStudyCommand::run() const {
+  // each study's own options: one given to the other study is a mistake, not something to ignore
+  const bool wiping = experiment::is_wiping_study(study_path_);
+  if (wiping && (!options_.seeds.empty() || !options_.sequences.empty())) {
+    throw std::invalid_argument("--seeds and --sequences are the accuracy study's; " + study_path_ +
+                                " is a wiping study (it takes -j)");
+  }
+  if (!wiping && jobs_ > 0) throw std::invalid_argument("-j is the wiping study's; " + study_path_ + " is not one");
+  return wiping ? run_wiping() : run_accuracy();
+}
 
 int FidelityStudyCommand::run_wiping() const {
   experiment::WipingStudyOptions options;

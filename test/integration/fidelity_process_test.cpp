@@ -127,5 +127,14 @@ TEST(WipingStudyProcess, WritesTablesBesideTheThesisAndItsFigureAndRepeatsThemWi
   EXPECT_EQ(read_file(dir + "/one/wiping_trace.csv"), read_file(dir + "/two/wiping_trace.csv"));
 }
 
+TEST(WipingStudyProcess, TheAccuracyStudysOptionsAreAnErrorNotIgnored) {
+  const std::string dir = make_temp_dir();
+  const ProcessResult r = run_process(
+      {bin("teleop"), "fidelity-study", "wiping", "-o", dir + "/out", "--seeds", "1,2"}, std::chrono::seconds(60));
+  EXPECT_EQ(r.exit_status, 1) << r.output;
+  EXPECT_NE(r.output.find("is a wiping study"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir + "/out/wiping.md"));
+}
+
 }  // namespace
 }  // namespace teleop::test
