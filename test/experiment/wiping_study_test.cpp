@@ -3,6 +3,7 @@
 #include "teleop/experiment/wiping_study.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <Eigen/Geometry>
 #include <filesystem>
@@ -101,7 +102,10 @@ TEST(WipingStudyFile, RejectsASweptParameterThatDoesNotChangeTheModelNamingTheKe
   yaml.replace(yaml.find(from), from.size(), "press_depth_m");
   // the model by absolute path: the copy lives elsewhere
   yaml.replace(yaml.find("../models/"), 3, source("config/"));
-  const std::string path = (std::filesystem::temp_directory_path() / "wiping_study_test_bad.yaml").string();
+  // one name per process: the sanitizer build's run of this test may run beside this one
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("wiping_study_test_bad_" + std::to_string(getpid()) + ".yaml"))
+          .string();
   std::ofstream(path) << yaml;
   try {
     load_wiping_study(path);
