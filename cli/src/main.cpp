@@ -2,7 +2,7 @@
 // one scenario under several network profiles, `teleop experiment` runs x profiles with metrics,
 // `teleop reset NODE` clears a node's latched reflex, `teleop plot RUN_DIR` draws a run's figures,
 // `teleop hand-study STUDY.yaml` reproduces the SVH hand study in MuJoCo (hand_study_command.h),
-// `teleop fidelity-study STUDY.yaml` the coupling thesis's twin accuracy study (fidelity_study_command.h);
+// `teleop fidelity-study STUDY.yaml` the coupling thesis's twin accuracy and wiping studies (fidelity_study_command.h);
 // `teleop topic`, `monitor`, `record`, `replay` (bus_commands.h) look at and keep the bus;
 // `teleop view` shows the robot live, `teleop render RUN_DIR` makes a video of a run (view_command.h).
 #include <CLI/CLI.hpp>

@@ -1,6 +1,6 @@
 #pragma once
-// Runs every variant of a sweep in `jobs` worker processes (fork: the variants share nothing, and a
-// crashing variant takes only its worker down) and collects their outcomes as a table.
+// Runs every variant of a sweep in `jobs` worker processes (sweep_workers.h) and collects their
+// outcomes as a table.
 
 #include <string>
 #include <vector>

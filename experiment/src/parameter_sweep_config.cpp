@@ -14,18 +14,21 @@ PressScenario read_press(const ConfigNode& s) {
   return p;
 }
 
-SweepParameter read_parameter(const ConfigNode& p) {
+}  // namespace
+
+SweepParameter read_sweep_parameter(const ConfigNode& p) {
   SweepParameter param{p.get_string("name"), p.get_string("set"), p.get_double_list("values", Range{-1e6, 1e6})};
-  static const std::regex kSet("(geom_pos_[xyz]|body_pos_[xyz]|geom_friction):[A-Za-z0-9_.-]+|press_depth_m");
+  static const std::regex kSet(
+      "(geom_pos_[xyz]|body_pos_[xyz]|geom_friction|body_angle_x):[A-Za-z0-9_.-]+|press_depth_m");
   if (!std::regex_match(param.set, kSet)) {
-    throw p.error("set", "expected geom_pos_x|y|z:NAME, body_pos_x|y|z:NAME, geom_friction:NAME or press_depth_m, got '" +
-                             param.set + "'");
+    throw p.error("set",
+                  "expected geom_pos_x|y|z:NAME, body_pos_x|y|z:NAME, geom_friction:NAME, body_angle_x:NAME or "
+                  "press_depth_m, got '" +
+                      param.set + "'");
   }
   if (param.values.empty()) throw p.error("values", "needs at least one value");
   return param;
 }
-
-}  // namespace
 
 SweepConfig parse_sweep_config(const ConfigNode& root) {
   const ConfigNode s = root.child("sweep");
@@ -33,7 +36,7 @@ SweepConfig parse_sweep_config(const ConfigNode& root) {
   c.model = twin::read_twin_model_config(s.child("model"));
   c.press = read_press(s.child("press"));
   c.duration_s = s.get_double("duration_s", Range{0.001, 3600}, c.duration_s);
-  for (const ConfigNode& p : s.get_node_list("parameters")) c.parameters.push_back(read_parameter(p));
+  for (const ConfigNode& p : s.get_node_list("parameters")) c.parameters.push_back(read_sweep_parameter(p));
   if (c.parameters.empty()) throw s.error("parameters", "needs at least one parameter");
   c.jobs = static_cast<int>(s.get_int("jobs", Range{1, 64}, c.jobs));
   return c;

@@ -24,6 +24,8 @@ struct PressScenario {
 /// One swept parameter: `set` names what it changes, `values` the grid points.
 ///   geom_pos_x|y|z:NAME, body_pos_x|y|z:NAME   position of a geom / body in its parent [m]
 ///   geom_friction:NAME                         sliding friction coefficient of a geom
+///   body_angle_x:NAME                          orientation of a body in its parent: a rotation
+///                                              about the parent's x axis [rad] (a tool's mounting angle)
 ///   press_depth_m                              the scenario's target depth [m]
 struct SweepParameter {
   std::string name;
@@ -42,6 +44,9 @@ struct SweepConfig {
 
 /// Reads the `sweep:` section. Throws ConfigError naming file and key.
 SweepConfig parse_sweep_config(const ConfigNode& root);
+
+/// Reads one entry of a `parameters:` list ({name, set, values}). Throws ConfigError naming the key.
+SweepParameter read_sweep_parameter(const ConfigNode& p);
 
 /// The grid: every combination of the parameters' values, the first parameter varying slowest.
 std::vector<std::vector<double>> sweep_grid(const std::vector<SweepParameter>& parameters);

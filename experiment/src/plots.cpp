@@ -136,4 +136,9 @@ void plot_parti_study(const PlotTool& tool, const std::string& kind, const std::
   run_package(tool, {"parti", kind, trace_csv, out_dir}, trace_csv);
 }
 
+void plot_wiping_study(const PlotTool& tool, const std::string& wipes_csv, const std::string& trace_csv,
+                       const std::string& out_dir) {
+  run_package(tool, {"wiping", wipes_csv, trace_csv, out_dir}, wipes_csv);
+}
+
 }  // namespace teleop::experiment

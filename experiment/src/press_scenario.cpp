@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sweep_parameters.h"
 #include "teleop/control/arm_dynamics.h"
 #include "teleop/control/controllers.h"
 #include "teleop/twin/twin_simulation.h"
@@ -11,22 +12,12 @@
 namespace teleop::experiment {
 namespace {
 
-int axis_of(const std::string& set) { return set[set.find(':') - 1] - 'x'; }
-
 // writes one parameter value into the model (or the scenario)
 void apply(const SweepParameter& p, double value, sim::MujocoModel& sim, PressScenario& press) {
-  if (p.set == "press_depth_m") {
-    press.depth_m = value;
-    return;
-  }
-  mjModel* m = sim.model();
-  const std::string name = p.set.substr(p.set.find(':') + 1);
-  if (p.set.rfind("geom_pos_", 0) == 0) {
-    m->geom_pos[3 * sim.geom_id(name) + axis_of(p.set)] = value;
-  } else if (p.set.rfind("body_pos_", 0) == 0) {
-    m->body_pos[3 * sim.body_id(name) + axis_of(p.set)] = value;
+  if (is_model_parameter(p.set)) {
+    apply_model_parameter(p, value, sim);
   } else {
-    m->geom_friction[3 * sim.geom_id(name)] = value;
+    press.depth_m = value;
   }
 }
 

@@ -7,6 +7,8 @@
                                                        the fidelity study's -> OUT_DIR/fidelity_<sequence>_*.png
   python3 scripts/teleop_plot parti margins|twin TRACE_CSV [OUT_DIR]
                                                        a PARTI study's -> OUT_DIR/safety_margins_*.png, parti_twin_*.png
+  python3 scripts/teleop_plot wiping WIPES_CSV TRACE_CSV [OUT_DIR]
+                                                       the wiping study's -> OUT_DIR/wiping_*.png
 
 Exit status: 0 done (figures whose columns a run lacks are skipped with a message), 1 an error
 (no trace in the dir, a file that cannot be read), 2 bad arguments, 3 no matplotlib.
@@ -39,6 +41,10 @@ def main():
     parti.add_argument("kind", choices=("margins", "twin"))
     parti.add_argument("csv")
     parti.add_argument("out_dir", nargs="?", help="default: the CSV's folder")
+    wiping = commands.add_parser("wiping", help="the wiping study's figures from its wipes and trace CSVs")
+    wiping.add_argument("csv")
+    wiping.add_argument("trace")
+    wiping.add_argument("out_dir", nargs="?", help="default: the CSV's folder")
     args = parser.parse_args()
     try:
         import matplotlib  # noqa: F401  (only to say clearly that it is missing)
@@ -54,6 +60,7 @@ def main():
     from results_figures import ResultsError, results_figures
     from run_figures import FIGURES, Skip
     from run_traces import Run, TraceError
+    from wiping_figures import WipingCsvError, wiping_figures
 
     def write(figures, out_dir, prefix=""):
         os.makedirs(out_dir, exist_ok=True)
@@ -72,13 +79,16 @@ def main():
             write(fidelity_figures(args.csv, args.segments), args.out_dir or os.path.dirname(os.path.abspath(args.csv)))
         elif args.command == "parti":
             write(parti_figures(args.kind, args.csv), args.out_dir or os.path.dirname(os.path.abspath(args.csv)))
+        elif args.command == "wiping":
+            write(wiping_figures(args.csv, args.trace), args.out_dir or os.path.dirname(os.path.abspath(args.csv)))
         elif args.command == "hand":
             write(hand_figures(args.csv), args.out_dir or os.path.dirname(os.path.abspath(args.csv)))
         else:
             stem = os.path.splitext(os.path.basename(args.csv))[0]
             out_dir = args.out_dir or os.path.dirname(os.path.abspath(args.csv))
             write(results_figures(args.csv, stem), out_dir, stem + "_")
-    except (TraceError, ResultsError, HandTraceError, FidelityTraceError, PartiTraceError, OSError) as e:
+    except (TraceError, ResultsError, HandTraceError, FidelityTraceError, PartiTraceError, WipingCsvError,
+            OSError) as e:
         print(f"teleop plot: {e}", file=sys.stderr)
         return EXIT_ERROR
     return 0

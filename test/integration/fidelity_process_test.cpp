@@ -2,6 +2,8 @@
 // free space, one into the wall, two "real" robots, short holds) writes its CSVs, the report with
 // the thesis's numbers beside ours, and its figures, which png_check.py opens; a second run of the
 // same seeds gives the same numbers (the study is deterministic but for its timing). A few seconds.
+// The wiping study (`teleop fidelity-study wiping`) as shipped: its tables, its figure, and the
+// same files again with one worker process instead of two. A few seconds.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -84,6 +86,50 @@ TEST(FidelityStudyProcess, AnUnknownSequenceIsAnErrorNamingIt) {
                   std::chrono::seconds(60));
   EXPECT_EQ(r.exit_status, 1) << r.output;
   EXPECT_NE(r.output.find("no sequence 'nowhere'"), std::string::npos) << r.output;
+}
+
+TEST(WipingStudyProcess, WritesTablesBesideTheThesisAndItsFigureAndRepeatsThemWithOneWorker) {
+  const std::string dir = make_temp_dir();
+  const ProcessResult first =
+      run_process({bin("teleop"), "fidelity-study", "wiping", "-o", dir + "/two", "-j", "2"}, std::chrono::seconds(120));
+  ASSERT_EQ(first.exit_status, 0) << first.output;
+  EXPECT_EQ(first.output.find("[fidelity-study] warning"), std::string::npos) << first.output;
+  const std::string report = read_file(dir + "/two/wiping.md");
+  // Table 4.3's shape: ours (the shipped grid has cells with every wipe and with none in contact)
+  // and the thesis's beside it
+  EXPECT_NE(report.find("| 0.000 rad | 3/3 contacts |"), std::string::npos) << report;
+  EXPECT_NE(report.find("| -0.150 rad | no contacts |"), std::string::npos) << report;
+  EXPECT_NE(report.find("| 0.0 rad | 2/3 contacts | 3/3 contacts | 3/3 contacts |"), std::string::npos) << report;
+  // Table 4.4's shape and the real robot's peaks
+  EXPECT_NE(report.find("J0: 14/12/8 N m, J3: 8/8/6 N m"), std::string::npos) << report;
+  EXPECT_NE(first.output.find("sweep: 9 cells in 2 worker processes"), std::string::npos) << first.output;
+
+  std::vector<std::string> check = {
+      "/usr/bin/env", experiment::find_plot_tool().python, "-B", source("test/integration/png_check.py"), "1200", "800",
+      "10000"};
+  for (const std::string name : {"torque_peaks", "torques_over_time", "hand_height"}) {
+    check.push_back(dir + "/two/wiping_" + name + ".png");
+    EXPECT_NE(first.output.find("wrote " + check.back()), std::string::npos) << first.output;
+  }
+  const ProcessResult drawn = run_process(check, std::chrono::seconds(60));
+  EXPECT_EQ(drawn.exit_status, 0) << drawn.output;
+
+  // one worker: the same cells, byte for byte
+  const ProcessResult second = run_process(
+      {bin("teleop"), "fidelity-study", "wiping", "-o", dir + "/one", "-j", "1", "--no-plots"}, std::chrono::seconds(120));
+  ASSERT_EQ(second.exit_status, 0) << second.output;
+  EXPECT_EQ(read_file(dir + "/one/wiping.md"), report);
+  EXPECT_EQ(read_file(dir + "/one/wiping_wipes.csv"), read_file(dir + "/two/wiping_wipes.csv"));
+  EXPECT_EQ(read_file(dir + "/one/wiping_trace.csv"), read_file(dir + "/two/wiping_trace.csv"));
+}
+
+TEST(WipingStudyProcess, TheAccuracyStudysOptionsAreAnErrorNotIgnored) {
+  const std::string dir = make_temp_dir();
+  const ProcessResult r = run_process(
+      {bin("teleop"), "fidelity-study", "wiping", "-o", dir + "/out", "--seeds", "1,2"}, std::chrono::seconds(60));
+  EXPECT_EQ(r.exit_status, 1) << r.output;
+  EXPECT_NE(r.output.find("is a wiping study"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir + "/out/wiping.md"));
 }
 
 }  // namespace

@@ -58,4 +58,10 @@ void plot_fidelity_study(const PlotTool& tool, const std::string& trace_csv, con
 void plot_parti_study(const PlotTool& tool, const std::string& kind, const std::string& trace_csv,
                       const std::string& out_dir);
 
+/// Writes the wiping study's figures (docs/fidelity.md) into `out_dir`: per wiper angle, the
+/// per-joint external-torque peaks of each panel height (the thesis's Table 4.4 as bars), and
+/// joints 0 and 3's torques over time (its Fig. 4.13). Throws PlotError.
+void plot_wiping_study(const PlotTool& tool, const std::string& wipes_csv, const std::string& trace_csv,
+                       const std::string& out_dir);
+
 }  // namespace teleop::experiment
