@@ -8,6 +8,7 @@
 #include "teleop/control/arm_dynamics.h"
 #include "teleop/control/controllers.h"
 #include "teleop/twin/twin_simulation.h"
+#include "twin_arm_state.h"
 
 namespace teleop::experiment {
 namespace {
@@ -19,15 +20,6 @@ void apply(const SweepParameter& p, double value, sim::MujocoModel& sim, PressSc
   } else {
     press.depth_m = value;
   }
-}
-
-control::ArmState arm_state(const twin::TwinSimulation& sim) {
-  control::ArmState s;
-  for (int i = 0; i < control::kDof; ++i) {
-    s.q[i] = sim.q_rad()[static_cast<size_t>(i)];
-    s.dq[i] = sim.dq_radps()[static_cast<size_t>(i)];
-  }
-  return s;
 }
 
 VariantOutcome run(const SweepConfig& config, const std::vector<double>& values) {

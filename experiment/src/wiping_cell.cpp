@@ -12,19 +12,11 @@
 #include "teleop/control/estimators.h"
 #include "teleop/experiment/wiping_study.h"
 #include "teleop/twin/twin_simulation.h"
+#include "twin_arm_state.h"
 #include "wiping_trajectory.h"
 
 namespace teleop::experiment {
 namespace {
-
-control::ArmState arm_state(const twin::TwinSimulation& sim) {
-  control::ArmState s;
-  for (int i = 0; i < control::kDof; ++i) {
-    s.q[i] = sim.q_rad()[static_cast<size_t>(i)];
-    s.dq[i] = sim.dq_radps()[static_cast<size_t>(i)];
-  }
-  return s;
-}
 
 Eigen::Isometry3d site_pose(const mjData* d, int site) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();

@@ -3,10 +3,10 @@ trace CSV (sequence, controller, seed, t_s and the error signals) and its segmen
 of every pose and movement): per movement, the errors over time of both controllers, as the
 coupling thesis's Fig. 4.4 shows them; and the contact sequence's errors over its whole run."""
 
-import csv
 import math
 
 from figure_style import DPI, HEIGHT_PX, WIDTH_PX, new_figure, pyplot
+from study_csv import group_columns, read_rows
 
 
 class FidelityTraceError(Exception):
@@ -20,28 +20,15 @@ COLOURS = {"state_space": "tab:blue", "joint_impedance": "tab:orange"}
 LABELS = {"state_space": "state space", "joint_impedance": "joint impedance"}
 
 
-def read_rows(path, required):
-    try:
-        with open(path, newline="", encoding="utf-8") as f:
-            reader = csv.DictReader(f)
-            missing = [c for c in required if c not in (reader.fieldnames or [])]
-            if missing:
-                raise FidelityTraceError(f"{path}: not a fidelity study file (no {', '.join(missing)} column)")
-            return list(reader)
-    except OSError as e:
-        raise FidelityTraceError(f"{path}: {e.strerror}") from e
+def read_file(path, required):
+    return read_rows(path, required, "fidelity study file", FidelityTraceError)
 
 
 def read_signals(path):
     """{(sequence, controller, seed): {column: [float]}} in file order."""
-    runs = {}
-    for row in read_rows(path, TRACE_COLUMNS):
-        columns = runs.setdefault((row["sequence"], row["controller"], row["seed"]), {})
-        for key in TRACE_COLUMNS[3:]:
-            columns.setdefault(key, []).append(float(row[key]))
-    if not runs:
-        raise FidelityTraceError(f"{path}: no samples")
-    return runs
+    return group_columns(path, read_file(path, TRACE_COLUMNS),
+                         lambda row: (row["sequence"], row["controller"], row["seed"]), FidelityTraceError,
+                         columns=TRACE_COLUMNS[3:])
 
 
 def window(columns, key, begin, end):
@@ -111,7 +98,7 @@ def contact_figure(signals, segments, sequence, seed):
 def fidelity_figures(trace_path, segments_path):
     """[(name, figure)] of the fidelity study's files."""
     signals = read_signals(trace_path)
-    segments = read_rows(segments_path, SEGMENT_COLUMNS)
+    segments = read_file(segments_path, SEGMENT_COLUMNS)
     seed = next(iter(signals))[2]
     sequences = []
     for row in segments:

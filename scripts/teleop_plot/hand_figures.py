@@ -2,10 +2,10 @@
 trace CSV (run, t_s, recording, tip_force_n, one column per joint): the index tip's force over time
 per run (the paper's Fig. 4), and two joints over time (its Figs. 5 and 6)."""
 
-import csv
 import math
 
 from figure_style import DPI, HEIGHT_PX, WIDTH_PX, pyplot
+from study_csv import group_columns, read_rows
 
 
 class HandTraceError(Exception):
@@ -17,23 +17,8 @@ REQUIRED = ("run", "t_s", "recording", "tip_force_n", "shoulder_pan_joint", "Ind
 
 def read_runs(path):
     """{run: {column: [float]}} in file order."""
-    try:
-        with open(path, newline="", encoding="utf-8") as f:
-            reader = csv.DictReader(f)
-            missing = [c for c in REQUIRED if c not in (reader.fieldnames or [])]
-            if missing:
-                raise HandTraceError(f"{path}: not a hand study trace (no {', '.join(missing)} column)")
-            runs = {}
-            for row in reader:
-                columns = runs.setdefault(row["run"], {})
-                for key, cell in row.items():
-                    if key != "run":
-                        columns.setdefault(key, []).append(float(cell))
-    except OSError as e:
-        raise HandTraceError(f"{path}: {e.strerror}") from e
-    if not runs:
-        raise HandTraceError(f"{path}: no samples")
-    return runs
+    rows = read_rows(path, REQUIRED, "hand study trace", HandTraceError)
+    return group_columns(path, rows, lambda row: row["run"], HandTraceError, skip=("run",))
 
 
 def recording_start(columns):

@@ -5,9 +5,8 @@ paper's Fig. 5 (its twin's collision meshes stay >= 0);
 twin, the end-effector pose and contact-wrench error norms over time (the paper's Fig. 7), and the
 estimators' contact force against the true one (Fig. 6's right column)."""
 
-import csv
-
 from figure_style import new_figure
+from study_csv import group_columns, read_rows
 
 
 class PartiTraceError(Exception):
@@ -25,25 +24,8 @@ ESTIMATORS = (("observer", "momentum observer (eqs. 6-8)", "tab:green"),
 
 
 def read(path, required, key):
-    try:
-        with open(path, newline="", encoding="utf-8") as f:
-            reader = csv.DictReader(f)
-            missing = [c for c in required if c not in (reader.fieldnames or [])]
-            if missing:
-                raise PartiTraceError(f"{path}: not a PARTI study trace (no {', '.join(missing)} column)")
-            runs = {}
-            for row in reader:
-                columns = runs.setdefault(row[key], {})
-                for name, value in row.items():
-                    if name != key and name not in TEXT_COLUMNS:
-                        columns.setdefault(name, []).append(float(value))
-    except OSError as e:
-        raise PartiTraceError(f"{path}: {e.strerror}") from e
-    except ValueError as e:
-        raise PartiTraceError(f"{path}: {e}") from e
-    if not runs:
-        raise PartiTraceError(f"{path}: no samples")
-    return runs
+    rows = read_rows(path, required, "PARTI study trace", PartiTraceError)
+    return group_columns(path, rows, lambda row: row[key], PartiTraceError, skip=(key,) + TEXT_COLUMNS)
 
 
 def margin_figure(path):

@@ -5,9 +5,8 @@ robot's first-contact peaks of joints 0 and 3 that the thesis reports; from its 
 and 3's estimated external torque over time in every cell (the thesis's Fig. 4.13) and the hand's
 height (its Fig. 4.15)."""
 
-import csv
-
 from figure_style import new_figure, pyplot
+from study_csv import group_columns, read_rows
 
 TORQUE_COLUMNS = [f"tau_ext_peak_j{j}_nm" for j in range(7)]
 REQUIRED = ("wiper_angle_rad", "panel_height_m", "wipe", "contact") + tuple(TORQUE_COLUMNS)
@@ -20,15 +19,7 @@ class WipingCsvError(Exception):
 
 def read_cells(path):
     """{(angle, height): {"contacts": n, "wipes": n, "peaks": [7 floats]}} in file order."""
-    try:
-        with open(path, newline="", encoding="utf-8") as f:
-            reader = csv.DictReader(f)
-            missing = [c for c in REQUIRED if c not in (reader.fieldnames or [])]
-            if missing:
-                raise WipingCsvError(f"{path}: not a wiping study file (no {', '.join(missing)} column)")
-            rows = list(reader)
-    except OSError as e:
-        raise WipingCsvError(f"{path}: {e.strerror}") from e
+    rows = read_rows(path, REQUIRED, "wiping study file", WipingCsvError)
     if not rows:
         raise WipingCsvError(f"{path}: no wipes")
     cells = {}
@@ -47,22 +38,9 @@ TRACE_COLUMNS = ("wiper_angle_rad", "panel_height_m", "t_s", "tau_ext_j0_nm", "t
 
 def read_trace(path):
     """{(angle, height): {column: [float]}} in file order."""
-    try:
-        with open(path, newline="", encoding="utf-8") as f:
-            reader = csv.DictReader(f)
-            missing = [c for c in TRACE_COLUMNS if c not in (reader.fieldnames or [])]
-            if missing:
-                raise WipingCsvError(f"{path}: not a wiping trace (no {', '.join(missing)} column)")
-            cells = {}
-            for row in reader:
-                columns = cells.setdefault((float(row["wiper_angle_rad"]), float(row["panel_height_m"])), {})
-                for key in TRACE_COLUMNS[2:]:
-                    columns.setdefault(key, []).append(float(row[key]))
-    except OSError as e:
-        raise WipingCsvError(f"{path}: {e.strerror}") from e
-    if not cells:
-        raise WipingCsvError(f"{path}: no samples")
-    return cells
+    return group_columns(path, read_rows(path, TRACE_COLUMNS, "wiping trace", WipingCsvError),
+                         lambda row: (float(row["wiper_angle_rad"]), float(row["panel_height_m"])), WipingCsvError,
+                         columns=TRACE_COLUMNS[2:])
 
 
 def torques_over_time(trace):
