@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "report_files.h"
 #include "sweep_workers.h"
 
 namespace teleop::experiment {
@@ -17,7 +18,7 @@ std::string outcome_row(const VariantOutcome& o) {
   r.precision(10);
   for (double v : o.values) r << v << ',';
   r << o.contact_steps << ',' << o.peak_force_n << ',' << o.mean_force_n << ',' << o.final_error_m << ','
-    << o.wall_time_s << ',' << o.rt_factor << ',' << o.mujoco_warnings << ",\"" << o.error << '"';
+    << o.wall_time_s << ',' << o.rt_factor << ',' << o.mujoco_warnings << ',' << csv_quoted(o.error);
   return r.str();
 }
 

@@ -27,6 +27,15 @@ void write_text(const std::string& path, const std::string& text) {
   if (!out.flush()) throw std::runtime_error("cannot write " + path);
 }
 
+std::string csv_quoted(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) {
+    out += c;
+    if (c == '"') out += '"';
+  }
+  return out + '"';
+}
+
 std::string format_number(const char* spec, double v) {
   if (std::isnan(v)) return "–";
   char buf[64];

@@ -13,6 +13,9 @@ std::string make_report_dir(const std::string& requested, const std::string& pre
 /// `v` printed with the printf `spec` ("%.3g"); NaN as "–" (tables).
 std::string format_number(const char* spec, double v);
 
+/// `text` as one quoted CSV field (RFC 4180: its quotes doubled), for free text such as an error.
+std::string csv_quoted(const std::string& text);
+
 /// Writes `text` to `path`, replacing it. Throws std::runtime_error naming the path on failure.
 void write_text(const std::string& path, const std::string& text);
 

@@ -11,8 +11,9 @@
 namespace teleop::experiment {
 
 /// Calls `run_cell(i)` for every i < cells, cell i in worker i % jobs, and returns the lines in
-/// cell order; a cell whose worker died is an empty string. A line must not hold a newline.
-/// Allocates, forks; throws std::runtime_error when a worker cannot be started.
+/// cell order; a cell whose worker died is an empty string (newlines in a cell's text become
+/// spaces). Allocates, forks; throws std::invalid_argument for jobs < 1, std::runtime_error when
+/// its folder or a worker cannot be made.
 std::vector<std::string> run_in_workers(size_t cells, int jobs, const std::function<std::string(size_t)>& run_cell);
 
 }  // namespace teleop::experiment

@@ -1,10 +1,12 @@
 // The wiping study's report: Tables 4.3 and 4.4 of the coupling thesis in shape with the thesis's
 // own beside them, the per-joint peaks of every cell, and the CSV of every wipe.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
+#include "report_files.h"
 #include "teleop/experiment/wiping_study.h"
 
 namespace teleop::experiment {
@@ -110,7 +112,7 @@ std::string format_wiping_csv(const std::vector<WipingCell>& cells) {
       for (const control::JointVector* v : {&w.tau_ext_peak_nm, &w.constraint_peak_nm, &c.free_tau_ext_peak_nm}) {
         for (int j = 0; j < control::kDof; ++j) o << ',' << (*v)[j];
       }
-      o << ',' << c.mujoco_warnings << ",\"" << c.error << "\"\n";
+      o << ',' << c.mujoco_warnings << ',' << csv_quoted(c.error) << '\n';
     }
   }
   return o.str();

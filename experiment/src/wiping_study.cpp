@@ -52,6 +52,9 @@ WipingCell decode(const std::string& line) {
   }
   joints(c.free_tau_ext_peak_nm);
   c.error = bar == std::string::npos ? "a worker's line without its end" : line.substr(bar + 1);
+  // a number the stream cannot read back (a NaN or Inf of a cell gone wrong) fails the whole line:
+  // never zeros passed off as measured
+  if (in.fail() || !(in >> std::ws).eof()) c.error = "a worker's line that does not read back: " + line;
   return c;
 }
 

@@ -9,10 +9,11 @@ namespace teleop::hand {
 EmulatedHand::EmulatedHand(const std::vector<EmulatedHandNode>& nodes, SharedDrivePlant* plant) : plant_(plant) {
   if (plant_ != nullptr) {
     plant_step_s_ = plant_->step_s();
-    if (!(plant_step_s_ > 0) || !std::isfinite(plant_step_s_)) {
-      throw std::invalid_argument("EmulatedHand: the shared plant's step must be positive and finite");
+    plant_step_ns_ = std::isfinite(plant_step_s_) ? std::llround(plant_step_s_ * 1e9) : 0;
+    // at least a nanosecond: a step that rounds to 0 ns would never use up the pending time
+    if (plant_step_ns_ < 1) {
+      throw std::invalid_argument("EmulatedHand: the shared plant's step must be finite and at least 1 ns");
     }
-    plant_step_ns_ = std::llround(plant_step_s_ * 1e9);
   }
   std::vector<bool> taken(plant_ != nullptr ? plant_->channels() : 0, false);
   for (const EmulatedHandNode& node : nodes) {

@@ -23,13 +23,16 @@ def read_cells(path):
     if not rows:
         raise WipingCsvError(f"{path}: no wipes")
     cells = {}
-    for row in rows:
-        cell = cells.setdefault((float(row["wiper_angle_rad"]), float(row["panel_height_m"])),
-                                {"contacts": 0, "wipes": 0, "peaks": [0.0] * 7})
-        cell["wipes"] += 1
-        cell["contacts"] += int(row["contact"])
-        if int(row["contact"]):
-            cell["peaks"] = [max(p, float(row[c])) for p, c in zip(cell["peaks"], TORQUE_COLUMNS)]
+    try:
+        for row in rows:
+            cell = cells.setdefault((float(row["wiper_angle_rad"]), float(row["panel_height_m"])),
+                                    {"contacts": 0, "wipes": 0, "peaks": [0.0] * 7})
+            cell["wipes"] += 1
+            cell["contacts"] += int(row["contact"])
+            if int(row["contact"]):
+                cell["peaks"] = [max(p, float(row[c])) for p, c in zip(cell["peaks"], TORQUE_COLUMNS)]
+    except ValueError as e:
+        raise WipingCsvError(f"{path}: {e}") from e
     return cells
 
 

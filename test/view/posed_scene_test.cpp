@@ -51,13 +51,24 @@ TEST(PosedScene, TheHandsJointsArePosedByNameCoupledOnesToo) {
   const mjData* d = scene.data(Layer::kFollower);
   // j3 (index 1) is a coupled joint without an actuator; index_spread (18) is coupled to the
   // finger spread
-  EXPECT_DOUBLE_EQ(d->qpos[m->jnt_qposadr[mj_name2id(m, mjOBJ_JOINT, "j3")]], q[1]);
-  EXPECT_DOUBLE_EQ(d->qpos[m->jnt_qposadr[mj_name2id(m, mjOBJ_JOINT, "index_spread")]], q[18]);
-  // the object is the emulator's, not one the follower tracks: it stays where the model has it
+  const int j3 = mj_name2id(m, mjOBJ_JOINT, "j3");
+  const int spread = mj_name2id(m, mjOBJ_JOINT, "index_spread");
+  const int j17 = mj_name2id(m, mjOBJ_JOINT, "j17");
+  const int base = mj_name2id(m, mjOBJ_BODY, "svh_base_link");
+  ASSERT_GE(j3, 0);
+  ASSERT_GE(spread, 0);
+  ASSERT_GE(j17, 0);
+  ASSERT_GE(base, 0);
+  EXPECT_DOUBLE_EQ(d->qpos[m->jnt_qposadr[j3]], q[1]);
+  EXPECT_DOUBLE_EQ(d->qpos[m->jnt_qposadr[spread]], q[18]);
+  EXPECT_TRUE(scene.moved_by_arms(m->jnt_bodyid[j17]));
+  EXPECT_FALSE(scene.moved_by_arms(base));
+  // the object is the emulator's, not one the follower tracks: posing the hand leaves it where
+  // the model starts it
   ASSERT_EQ(scene.free_bodies().size(), 1u);
-  EXPECT_TRUE(scene.moved_by_arms(m->jnt_bodyid[mj_name2id(m, mjOBJ_JOINT, "j17")]));
-  EXPECT_FALSE(scene.moved_by_arms(mj_name2id(m, mjOBJ_BODY, "svh_base_link")));
   scene.update();
+  const FreeBody& object = scene.free_bodies()[0];
+  for (int i = 0; i < 7; ++i) EXPECT_DOUBLE_EQ(d->qpos[object.qpos + i], m->qpos0[object.qpos + i]) << i;
 }
 
 TEST(PosedScene, GhostsAreTheBodiesTheArmsMove) {
