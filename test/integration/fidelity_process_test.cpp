@@ -14,6 +14,11 @@
 
 namespace teleop::test {
 namespace {
+
+// a hang guard, not a speed limit: under ASan on a loaded host the shipped wiping study takes
+// minutes; the ctest timeout (300 s) stays above it
+constexpr std::chrono::seconds kStudyTimeout{280};
+
 namespace fs = std::filesystem;
 
 // the shipped study with short holds and movements, its models by absolute path
@@ -91,7 +96,7 @@ TEST(FidelityStudyProcess, AnUnknownSequenceIsAnErrorNamingIt) {
 TEST(WipingStudyProcess, WritesTablesBesideTheThesisAndItsFigureAndRepeatsThemWithOneWorker) {
   const std::string dir = make_temp_dir();
   const ProcessResult first =
-      run_process({bin("teleop"), "fidelity-study", "wiping", "-o", dir + "/two", "-j", "2"}, std::chrono::seconds(120));
+      run_process({bin("teleop"), "fidelity-study", "wiping", "-o", dir + "/two", "-j", "2"}, kStudyTimeout);
   ASSERT_EQ(first.exit_status, 0) << first.output;
   EXPECT_EQ(first.output.find("[fidelity-study] warning"), std::string::npos) << first.output;
   const std::string report = read_file(dir + "/two/wiping.md");
@@ -111,13 +116,17 @@ TEST(WipingStudyProcess, WritesTablesBesideTheThesisAndItsFigureAndRepeatsThemWi
   }
   expect_figures_drawn(figures);
 
-  // one worker: the same cells, byte for byte
+#ifndef TELEOP_SANITIZED
+  // one worker: the same cells, byte for byte (a property of the arithmetic, not of memory: the
+  // sanitizer build, where the study takes a minute a run, checks the pool in
+  // experiment_sweep_workers_test instead)
   const ProcessResult second = run_process(
-      {bin("teleop"), "fidelity-study", "wiping", "-o", dir + "/one", "-j", "1", "--no-plots"}, std::chrono::seconds(120));
+      {bin("teleop"), "fidelity-study", "wiping", "-o", dir + "/one", "-j", "1", "--no-plots"}, kStudyTimeout);
   ASSERT_EQ(second.exit_status, 0) << second.output;
   EXPECT_EQ(read_file(dir + "/one/wiping.md"), report);
   EXPECT_EQ(read_file(dir + "/one/wiping_wipes.csv"), read_file(dir + "/two/wiping_wipes.csv"));
   EXPECT_EQ(read_file(dir + "/one/wiping_trace.csv"), read_file(dir + "/two/wiping_trace.csv"));
+#endif
 }
 
 TEST(WipingStudyProcess, TheAccuracyStudysOptionsAreAnErrorNotIgnored) {
