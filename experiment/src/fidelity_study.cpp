@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "fidelity_arm.h"
-#include "teleop/hand/min_jerk.h"
+#include "teleop/control/min_jerk.h"
 
 namespace teleop::experiment {
 namespace {
@@ -22,9 +22,9 @@ std::vector<double> as_vector(const control::JointVector& q) { return {q.data(),
 
 // the sequence's commanded motion: hold_s at the start, then per pose move_s of minimum jerk and
 // hold_s at rest
-hand::MinJerkPath sequence_path(const FidelityStudyConfig& c, const FidelitySequence& s) {
+control::MinJerkPath sequence_path(const FidelityStudyConfig& c, const FidelitySequence& s) {
   std::vector<double> at = as_vector(c.pose(s.path.front()).q_rad);
-  hand::MinJerkPath path(at);
+  control::MinJerkPath path(at);
   path.then(at, c.hold_s);
   for (size_t i = 1; i < s.path.size(); ++i) {
     at = as_vector(c.pose(s.path[i]).q_rad);
@@ -129,7 +129,7 @@ const FidelityPose& FidelityStudyConfig::pose(const std::string& pose_name) cons
 FidelityTrajectory run_real(const FidelityStudyConfig& c, const FidelitySequence& s, FidelityController controller,
                             uint64_t seed, std::vector<RecordedCommand>& commands) {
   FidelityArm arm(c, s.model_path, controller, seed);
-  const hand::MinJerkPath path = sequence_path(c, s);
+  const control::MinJerkPath path = sequence_path(c, s);
   const double dt = arm.timestep_s();
   const long steps = sequence_steps(c, s, dt);
   // the commands are the planned motion, sampled at each step (thesis §3.3: desired positions and

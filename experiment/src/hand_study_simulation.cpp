@@ -40,8 +40,8 @@ std::vector<double> keyframe_pose(const hand::HandPlant& plant, const std::strin
   return pose;
 }
 
-hand::MinJerkPath make_path(const hand::HandPlant& plant, const HandStudyConfig& c) {
-  hand::MinJerkPath path(keyframe_pose(plant, c.path.front().keyframe));
+control::MinJerkPath make_path(const hand::HandPlant& plant, const HandStudyConfig& c) {
+  control::MinJerkPath path(keyframe_pose(plant, c.path.front().keyframe));
   for (size_t i = 1; i < c.path.size(); ++i) path.then(keyframe_pose(plant, c.path[i].keyframe), c.path[i].move_s);
   return path;
 }

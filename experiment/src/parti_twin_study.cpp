@@ -13,7 +13,7 @@
 #include "fidelity_arm.h"
 #include "teleop/control/arm_dynamics.h"
 #include "teleop/control/estimators.h"
-#include "teleop/hand/min_jerk.h"
+#include "teleop/control/min_jerk.h"
 
 namespace teleop::experiment {
 namespace {
@@ -48,7 +48,7 @@ std::vector<control::ArmCommand> taught_commands(const PartiTwinConfig& c, const
   control::ArmDynamics dyn(nominal.model(), c.ee_site);
   dyn.update(control::ArmState{q0, control::JointVector::Zero()});
   const Eigen::Vector3d p0 = dyn.ee_position();
-  hand::MinJerkPath path({p0.x(), p0.y(), p0.z()});
+  control::MinJerkPath path({p0.x(), p0.y(), p0.z()});
   double duration_s = c.start_hold_s;
   path.then({p0.x(), p0.y(), p0.z()}, c.start_hold_s);
   for (const PartiWaypoint& w : c.waypoints) {

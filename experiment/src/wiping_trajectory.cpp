@@ -3,12 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "teleop/control/min_jerk.h"
+
 namespace teleop::experiment {
 namespace {
-
-// minimum jerk: position and rate of the normalised path at tau in [0, 1]
-double min_jerk(double tau) { return tau * tau * tau * (10.0 - 15.0 * tau + 6.0 * tau * tau); }
-double min_jerk_rate(double tau) { return 30.0 * tau * tau * (1.0 - tau) * (1.0 - tau); }
 
 // the tool over the panel: blade (x) up the slope, face (z) into the surface, then tilted by the
 // lean about the blade
@@ -66,10 +64,10 @@ HandSetPoint WipingTrajectory::at(double t_s) const {
   if (it == segments_.end()) --it;
   const Segment& s = *it;
   const double tau = s.length_s > 0.0 ? std::clamp((t_s - s.t0_s) / s.length_s, 0.0, 1.0) : 1.0;
-  const double rate = s.length_s > 0.0 && t_s <= s.t0_s + s.length_s ? min_jerk_rate(tau) / s.length_s : 0.0;
+  const double rate = s.length_s > 0.0 && t_s <= s.t0_s + s.length_s ? control::min_jerk_rate(tau) / s.length_s : 0.0;
   HandSetPoint p;
-  p.position = s.from + min_jerk(tau) * (s.to - s.from);
-  p.orientation = s.q_from.slerp(min_jerk(tau), s.q_to);
+  p.position = s.from + control::min_jerk_progress(tau) * (s.to - s.from);
+  p.orientation = s.q_from.slerp(control::min_jerk_progress(tau), s.q_to);
   p.twist.head<3>() = rate * (s.to - s.from);
   // the slerp's angular rate: the rotation from start to goal, about its axis
   const Eigen::AngleAxisd turn(s.q_to * s.q_from.inverse());

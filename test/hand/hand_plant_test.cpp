@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "allocation_counter.h"
-#include "teleop/hand/min_jerk.h"
+#include "teleop/control/min_jerk.h"
 #include "teleop/hand/position_control.h"
 
 namespace teleop::hand {
@@ -40,7 +40,7 @@ CloseOpen close_and_open(HandPlant& plant, CouplingMode mode) {
   HandMotorVector m_ref{};
   HandMotorVector dm_ref{};
   for (const auto& [from, to] : {std::pair{open, closed}, std::pair{closed, open}}) {
-    const MinJerkMotion motion(from, to, 0.6);
+    const control::MinJerkMotion motion(from, to, 0.6);
     for (double t = 0.0; t < 0.8; t += dt) {
       motion.sample(t, m_ref, dm_ref);
       plant.begin_step();
@@ -123,7 +123,7 @@ TEST(HandPlant, AControlCycleDoesNotAllocate) {
     HandPlant plant = load_hand();
     plant.mujoco().reset("open");
     const HandPositionControl control(plant, mode, 40.0, 1.0);
-    const MinJerkMotion motion(std::vector<double>(kHandMotors, 0.0), std::vector<double>(kHandMotors, 0.3), 0.1);
+    const control::MinJerkMotion motion(std::vector<double>(kHandMotors, 0.0), std::vector<double>(kHandMotors, 0.3), 0.1);
     HandMotorVector m_ref{};
     HandMotorVector dm_ref{};
     double sink = 0.0;

@@ -9,7 +9,7 @@
 
 #include "teleop/experiment/hand_study.h"
 #include "teleop/hand/hand_plant.h"
-#include "teleop/hand/min_jerk.h"
+#include "teleop/control/min_jerk.h"
 #include "teleop/hand/position_control.h"
 
 namespace teleop::experiment {
@@ -48,7 +48,7 @@ class HandStudySimulation {
   };
 
   hand::HandPlant plant_;
-  hand::MinJerkPath path_;
+  control::MinJerkPath path_;
   // designed with the plant at the path's last keyframe (the constructor puts it there first)
   std::array<ArmJoint, kArmJointNames.size()> arm_;
   hand::HandPositionControl hand_control_;

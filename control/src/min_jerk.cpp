@@ -1,11 +1,11 @@
-#include "teleop/hand/min_jerk.h"
+#include "teleop/control/min_jerk.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
 
-namespace teleop::hand {
+namespace teleop::control {
 
 MinJerkMotion::MinJerkMotion(std::vector<double> start, std::vector<double> goal, double duration_s)
     : start_(std::move(start)), goal_(std::move(goal)), duration_s_(duration_s) {
@@ -17,10 +17,8 @@ MinJerkMotion::MinJerkMotion(std::vector<double> start, std::vector<double> goal
 
 void MinJerkMotion::sample(double t_s, std::span<double> q, std::span<double> dq) const {
   const double tau = std::clamp(t_s / duration_s_, 0.0, 1.0);
-  const double tau2 = tau * tau;
-  // s and ds/dt of the quintic; ds/dtau = 30 tau^2 (1 - tau)^2
-  const double s = tau2 * tau * (10.0 - 15.0 * tau + 6.0 * tau2);
-  const double ds = 30.0 * tau2 * (1.0 - tau) * (1.0 - tau) / duration_s_;
+  const double s = min_jerk_progress(tau);
+  const double ds = min_jerk_rate(tau) / duration_s_;
   for (size_t i = 0; i < start_.size(); ++i) {
     const double span = goal_[i] - start_[i];
     q[i] = start_[i] + span * s;
@@ -52,4 +50,4 @@ void MinJerkPath::sample(double t_s, std::span<double> q, std::span<double> dq) 
   motions_[i].sample(t_s - begins_s_[i], q, dq);
 }
 
-}  // namespace teleop::hand
+}  // namespace teleop::control

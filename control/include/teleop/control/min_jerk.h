@@ -3,13 +3,20 @@
 // quintic s(tau) = 10 tau^3 - 15 tau^4 + 6 tau^5, tau = t / T, so position, velocity and
 // acceleration are continuous and the velocity and acceleration are zero at both ends (Flash and
 // Hogan's minimum-jerk profile). A path strings such motions through waypoints, stopping at each.
-// The SVH study moves its arm and hand from "home" to "test" on one.
+// The SVH study moves its arm and hand from "home" to "test" on one, the fidelity and PARTI studies
+// their arms, the wiping study its tool (through the normalised profile).
 
 #include <cstddef>
 #include <span>
 #include <vector>
 
-namespace teleop::hand {
+namespace teleop::control {
+
+/// The normalised profile s(tau) = 10 tau^3 - 15 tau^4 + 6 tau^5 for tau in [0, 1] (0 to 1).
+inline double min_jerk_progress(double tau) { return tau * tau * tau * (10.0 - 15.0 * tau + 6.0 * tau * tau); }
+/// Its rate ds/dtau = 30 tau^2 (1 - tau)^2.
+inline double min_jerk_rate(double tau) { return 30.0 * tau * tau * (1.0 - tau) * (1.0 - tau); }
+
 
 class MinJerkMotion {
  public:
@@ -51,4 +58,4 @@ class MinJerkPath {
   double duration_s_ = 0.0;
 };
 
-}  // namespace teleop::hand
+}  // namespace teleop::control
