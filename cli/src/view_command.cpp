@@ -17,6 +17,19 @@ namespace teleop::cli {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// where `teleop view` and `teleop render` start their camera (SceneRenderer::start_camera)
+template <typename Options>
+void add_camera_options(CLI::App* command, Options& o, const std::string& camera_help) {
+  command->add_option("--camera", o.camera, camera_help);
+  command->add_option("--azimuth", o.azimuth_deg, "the free camera's azimuth [deg]");
+  command->add_option("--elevation", o.elevation_deg, "the free camera's elevation [deg]");
+  command->add_option("--distance", o.distance_m, "the free camera's distance [m]")->check(CLI::PositiveNumber);
+}
+
+}  // namespace
+
 ViewCommands::ViewCommands(CLI::App& app) {
   add_view(app);
   add_render(app);
@@ -44,10 +57,7 @@ void ViewCommands::add_view(CLI::App& app) {
   view_->add_flag("--no-shadows", no_shadows_, "no shadows (faster on software OpenGL)");
   view_->add_flag("--no-overlay", no_overlay_, "no text over the picture");
   view_->add_flag("--stereo", o.stereo, "side-by-side stereo: the left eye's picture left, the right eye's right");
-  view_->add_option("--camera", o.camera, "start with this camera of the model (default: the free camera)");
-  view_->add_option("--azimuth", o.azimuth_deg, "the free camera's azimuth [deg]");
-  view_->add_option("--elevation", o.elevation_deg, "the free camera's elevation [deg]");
-  view_->add_option("--distance", o.distance_m, "the free camera's distance [m]")->check(CLI::PositiveNumber);
+  add_camera_options(view_, o, "start with this camera of the model (default: the free camera)");
   view_->add_option("--width", o.width, "window width in pixels (default 1280)")->check(CLI::Range(64, 8192));
   view_->add_option("--height", o.height, "window height in pixels (default 800)")->check(CLI::Range(64, 8192));
   view_->add_option("--max-fps", o.max_fps, "frames per second at most (default 60)")->check(CLI::Range(1.0, 1000.0));
@@ -84,10 +94,7 @@ void ViewCommands::add_render(CLI::App& app) {
   render_->add_option("--still", o.still, "also write one frame as PNG");
   render_->add_option("--still-at", o.still_at_s, "the still's run time [s] (default: the middle)")
       ->check(CLI::NonNegativeNumber);
-  render_->add_option("--camera", o.camera, "a camera of the model (default: the free camera)");
-  render_->add_option("--azimuth", o.azimuth_deg, "the free camera's azimuth [deg]");
-  render_->add_option("--elevation", o.elevation_deg, "the free camera's elevation [deg]");
-  render_->add_option("--distance", o.distance_m, "the free camera's distance [m]")->check(CLI::PositiveNumber);
+  add_camera_options(render_, o, "a camera of the model (default: the free camera)");
   render_->add_option("--width", o.width, "frame width in pixels, even (default 1280)")->check(CLI::Range(64, 4096));
   render_->add_option("--height", o.height, "frame height in pixels, even (default 720)")->check(CLI::Range(64, 4096));
   render_->add_option("--fps", o.fps, "frames per second of video (default 30)")->check(CLI::Range(1.0, 240.0));

@@ -76,13 +76,7 @@ RenderResult render_run(const RenderOptions& options, FILE* log) {
   settings.contacts = options.contacts;
   settings.shadows = options.shadows;
   settings.layers = {true, options.twin, options.leader};
-  if (!options.camera.empty()) {
-    renderer.use_model_camera(options.camera);
-  } else if (!std::isnan(options.azimuth_deg) || !std::isnan(options.elevation_deg) || options.distance_m > 0) {
-    const mjvCamera& c = renderer.camera();
-    renderer.orbit(std::isnan(options.azimuth_deg) ? c.azimuth : options.azimuth_deg,
-                   std::isnan(options.elevation_deg) ? c.elevation : options.elevation_deg, options.distance_m);
-  }
+  renderer.start_camera(options.camera, options.azimuth_deg, options.elevation_deg, options.distance_m);
 
   const std::string label = run_label(options.run_dir);
   std::string legend = "follower\tsolid";

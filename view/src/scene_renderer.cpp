@@ -63,6 +63,16 @@ void SceneRenderer::use_model_camera(const std::string& name) {
   camera_.fixedcamid = id;
 }
 
+void SceneRenderer::start_camera(const std::string& name, double azimuth_deg, double elevation_deg,
+                                 double distance_m) {
+  if (!name.empty()) {
+    use_model_camera(name);
+  } else if (!std::isnan(azimuth_deg) || !std::isnan(elevation_deg) || distance_m > 0) {
+    orbit(std::isnan(azimuth_deg) ? camera_.azimuth : azimuth_deg,
+          std::isnan(elevation_deg) ? camera_.elevation : elevation_deg, distance_m);
+  }
+}
+
 void SceneRenderer::orbit(double azimuth_deg, double elevation_deg, double distance_m) {
   camera_.type = mjCAMERA_FREE;
   camera_.azimuth = azimuth_deg;

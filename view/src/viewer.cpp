@@ -55,13 +55,7 @@ int run_view(const ViewOptions& options, FILE* out) {
   settings.stereo = options.stereo;
   settings.shadows = options.shadows;
   settings.layers = {true, layers.twin, layers.leader};
-  if (!options.camera.empty()) {
-    renderer.use_model_camera(options.camera);
-  } else if (!std::isnan(options.azimuth_deg) || !std::isnan(options.elevation_deg) || options.distance_m > 0) {
-    const mjvCamera& c = renderer.camera();
-    renderer.orbit(std::isnan(options.azimuth_deg) ? c.azimuth : options.azimuth_deg,
-                   std::isnan(options.elevation_deg) ? c.elevation : options.elevation_deg, options.distance_m);
-  }
+  renderer.start_camera(options.camera, options.azimuth_deg, options.elevation_deg, options.distance_m);
   ViewInput input(window, renderer, scene.model());
 
   transport::Participant participant(bus_config);

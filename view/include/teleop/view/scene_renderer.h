@@ -51,13 +51,17 @@ class SceneRenderer {
   const mjrContext& context() const { return context_; }
 
   /// The free camera looking at the model's centre from behind the robot's left shoulder
-  /// (azimuth 60 deg, elevation -20 deg, MuJoCo's distance for the model's size).
+  /// (azimuth 60 deg, elevation -20 deg, MuJoCo's distance for the model's size), or from the
+  /// angles the model chose itself (<visual><global azimuth elevation>: the hand's).
   void reset_camera();
   /// A camera of the model, by name. Throws std::runtime_error listing the model's cameras when
   /// it has none of that name.
   void use_model_camera(const std::string& name);
   /// The free camera with this azimuth and elevation [deg] and distance [m] (<= 0: keep).
   void orbit(double azimuth_deg, double elevation_deg, double distance_m);
+  /// Where a view or render starts: the model's camera `name` when given, else the free camera
+  /// turned to the given angles and distance (NaN angles and a distance <= 0 keep the default's).
+  void start_camera(const std::string& name, double azimuth_deg, double elevation_deg, double distance_m);
 
   /// Arrows drawn with every frame from now on while contacts are shown (the external force at
   /// a flange).
