@@ -57,6 +57,7 @@ bool CommandValidator::stale(const msg::SampleHeader& header, int64_t now_system
 CommandVerdict CommandValidator::reject(CommandIssue reason) {
   ++counts_[static_cast<size_t>(reason)];
   ++rejected_;
+  last_rejection_ = reason;
   return CommandVerdict::kRejected;
 }
 

@@ -125,6 +125,10 @@ FollowerConfig parse_follower_config(const ConfigNode& root, const robot::Hardwa
     }
     c.command_source = implied;
   }
+  if (s.has("accept_commands_from")) {
+    c.accept_commands_from = s.get_string_list("accept_commands_from");
+    if (c.accept_commands_from.empty()) throw s.error("accept_commands_from", "names no node (leave it out to accept any)");
+  }
   read_joint_limits(s, c.joints, c.limits);
   read_cartesian_limits(s, c.limits);
   c.max_torque_rate_nm_per_s = s.get_bound_or_off("max_torque_rate_nm_per_s", Range{1, 1e6}, c.max_torque_rate_nm_per_s);

@@ -58,7 +58,8 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<robot::
       wrench_pub_(context.participant, transport::arm_topic(transport::topics::kFollowerWrench, config.arm),
                   context.node.name),
       reflex_(config.reflex),
-      rejoin_(config.joints, config.rejoin_speed_radps, 1.0 / context.node.rate_hz) {
+      rejoin_(config.joints, config.rejoin_speed_radps, 1.0 / context.node.rate_hz),
+      stall_watch_(static_cast<int64_t>(config.command_timeout_s * 1e9)) {
   if (hardware_->joints() != config.joints) {
     throw std::runtime_error("follower.joints is " + std::to_string(config.joints) + " but the robot (" +
                              hardware_->name() + ") has " + std::to_string(hardware_->joints()) + " joints");
@@ -79,6 +80,8 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<robot::
   } else {
     cartesian_commands_.mark_optional();
   }
+  joint_commands_.accept_only(config.accept_commands_from);
+  cartesian_commands_.accept_only(config.accept_commands_from);
   if (cartesian) {
     // pfc observes its energy balance too, only pfc_tdpa corrects it
     const bool correct = config.teleoperation->architecture == runtime::Architecture::kPfcTdpa;
@@ -113,17 +116,21 @@ void FollowerNode::take(transport::Subscription<Command>& commands, Source sourc
                         int64_t now_system_ns, int64_t now_ns) {
   if (commands.poll() == 0) return;
   const uint64_t session = commands.session().session();
-  if (validator_.validate(commands.latest(), now_system_ns, active_, session) == CommandVerdict::kRejected) return;
+  if (validator_.validate(commands.latest(), now_system_ns, active_, session) == CommandVerdict::kRejected) {
+    // the sender learns it from the status (FlowStatus.in_force), the log from the first of each kind
+    const CommandIssue why = validator_.last_rejection();
+    commands.reject_latest(static_cast<uint32_t>(why), to_string(why));
+    return;
+  }
   source_ = source;
   liveliness_lost_at_command_ = commands.reader().liveliness_lost();
   last_valid_command_ns_ = now_ns;
   command_seq_ = commands.latest().header().seq();
   if (session == last_session) return;
   last_session = session;
+  // a new sender (a restarted leader) is joined from where the robot holds; a latched reflex
+  // stays latched: only an explicit reset clears it, never a new session
   ++command_sessions_;
-  // a new sender (a restarted leader) starts afresh: a reflex latched under its predecessor is
-  // cleared, the robot rejoins it from where it holds
-  reflex_.reset();
 }
 
 void FollowerNode::take_reset_requests() {
@@ -153,12 +160,14 @@ bool FollowerNode::source_lost(double silence_s) const {
   return false;
 }
 
-void FollowerNode::run_watchdog(int64_t now_ns) {
+void FollowerNode::run_watchdog(int64_t now_ns, bool stalled) {
   // a hardware fault is not cleared by commands arriving: it needs an operator
   if (state_ == msg::STATE_FAULT) return;
   const double silence_s = static_cast<double>(now_ns - last_valid_command_ns_) * 1e-9;
   const bool lost = source_lost(silence_s);
-  if (source_ != Source::kNone && silence_s < config_.command_timeout_s && !lost) {
+  // our own loop missed more than the timeout: what was drained now is a backlog, and the newest
+  // command of it must not act as a step; hold for this cycle and rejoin from the held pose
+  if (!stalled && source_ != Source::kNone && silence_s < config_.command_timeout_s && !lost) {
     // a latched reflex holds until reset, however well the commands flow
     if (reflex_.latched()) return;
     // commands (re)start after a hold: the robot joins them from the pose it held
@@ -169,9 +178,10 @@ void FollowerNode::run_watchdog(int64_t now_ns) {
   if (state_ == msg::STATE_RUNNING) {
     // commands stopped: hold the pose we are at, in joint impedance, until they come back
     state_ = msg::STATE_SAFE_HOLD;
-    ++watchdog_trips_;
+    hold_cause_ = stalled ? msg::FAULT_LOOP_OVERRUN : lost ? msg::FAULT_PEER_LOST : msg::FAULT_STALE_INPUT;
+    ++(stalled ? stall_holds_ : watchdog_trips_);
     if (lost) ++liveliness_trips_;
-    watchdog_latency_max_s_ = std::max(watchdog_latency_max_s_, silence_s);
+    if (!stalled) watchdog_latency_max_s_ = std::max(watchdog_latency_max_s_, silence_s);
     hold_current_pose(active_, config_.hold_stiffness_nm_per_rad, config_.hold_damping_nms_per_rad);
     // the channel's session ended with the command source: both ends start their bookkeeping afresh
     if (passive_) passive_->reset();
@@ -263,9 +273,10 @@ void FollowerNode::cycle(const CycleTick& tick) {
   control_.estimate(arm_);
   // the watchdog counts control cycles (their deadlines): a cycle released late neither
   // shortens nor stretches the timeout
+  const bool stalled = stall_watch_.stalled(tick);
   take_commands(tick.deadline_ns);
   take_reset_requests();
-  run_watchdog(tick.deadline_ns);
+  run_watchdog(tick.deadline_ns, stalled);
   run_reflex();
   apply_passivity();
   command_torque(*controlled_);
@@ -287,7 +298,7 @@ void FollowerNode::active_faults(std::vector<uint32_t>& faults) const {
   if (reflex_.latched()) {
     faults.push_back(reflex_.fault_code());
   } else if (state_ == msg::STATE_SAFE_HOLD) {
-    faults.push_back(liveliness_trips_ > 0 ? msg::FAULT_PEER_LOST : msg::FAULT_STALE_INPUT);
+    faults.push_back(hold_cause_);
   }
   if (validator_.rejected() > 0) faults.push_back(msg::FAULT_COMMAND_REJECTED);
 }
@@ -300,6 +311,7 @@ void FollowerNode::fill_report(runtime::NodeReport& report) const {
   report.add(wrench_pub_);
   auto counter = [&](const char* name, double value) { report.counters.emplace_back(name, value); };
   counter("watchdog_trips", static_cast<double>(watchdog_trips_));
+  counter("stall_holds", static_cast<double>(stall_holds_));
   counter("liveliness_trips", static_cast<double>(liveliness_trips_));
   counter("watchdog_latency_max_ms", watchdog_latency_max_s_ * 1e3);
   counter("torque_saturations", static_cast<double>(limiter_.saturations()));

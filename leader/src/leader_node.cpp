@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "teleop/common/clock.h"
 #include "teleop/transport/arm_topic.h"
 #include "teleop/transport/joint_fields.h"
 
@@ -65,6 +66,7 @@ LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context
     cmd.damping_nms_per_rad().assign(n, config.damping_nms_per_rad);
   }
   if (config.hand) hand_command_.emplace(context.participant, transport::topics::kHandCommand, context.node.name);
+  watch_authority(context.participant, context.node.name);
   auto& st = device_state_.sample();
   st.robot("leader_device");
   st.arm(transport::arm_label(config.arm));
@@ -84,6 +86,17 @@ LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context
   }
 }
 
+void LeaderNode::watch_authority(transport::Participant& participant, const std::string& self) {
+  // model-mediated: the twin takes the device's state; the other architectures command the follower
+  if (cartesian_command_) {
+    authority_.emplace(participant, cartesian_command_->writer_id(), self, cartesian_command_->topic_name());
+  } else if (architecture() == Architecture::kMmt) {
+    authority_.emplace(participant, device_state_.writer_id(), self, device_state_.topic_name());
+  } else {
+    authority_.emplace(participant, joint_command_->writer_id(), self, joint_command_->topic_name());
+  }
+}
+
 void LeaderNode::poll_peers() {
   follower_state_.poll();
   follower_wrench_.poll();
@@ -96,13 +109,19 @@ void LeaderNode::update_state(int64_t now_ns) {
   // model-mediated: the operator touches the twin, the follower follows it; both must be there
   const bool fresh = follower_state_.age_ns(now_ns) < timeout &&
                      (architecture() != Architecture::kMmt || twin_feedback_.age_ns(now_ns) < timeout);
-  if (fresh) {
+  authority_->poll(now_ns);
+  // running means in command: the node that takes our commands follows us and has them in force
+  const runtime::CommandRefusal refusal = authority_->refusal();
+  const bool refused = refusal != runtime::CommandRefusal::kNone && refusal != runtime::CommandRefusal::kNoTaker &&
+                       refusal != runtime::CommandRefusal::kNotYet;
+  if (fresh && !authority_->in_command()) ++cycles_not_in_command_;
+  if (fresh && authority_->in_command()) {
     if (state_ == msg::STATE_SAFE_HOLD && tdpa_) tdpa_->reset();  // a new session with the follower
     state_ = msg::STATE_RUNNING;
-  } else if (state_ == msg::STATE_RUNNING) {
-    // the peer was there and went silent: freeze the command where it is
+  } else if (state_ == msg::STATE_RUNNING || (state_ == msg::STATE_STARTING && fresh && refused)) {
+    // the peer went silent, or our commands are not in force: freeze the command where it is
+    ++(fresh ? not_in_command_events_ : peer_lost_events_);
     state_ = msg::STATE_SAFE_HOLD;
-    ++peer_lost_events_;
   }
 }
 
@@ -287,7 +306,9 @@ void LeaderNode::fill_status(msg::NodeStatus& status) const {
 }
 
 void LeaderNode::active_faults(std::vector<uint32_t>& faults) const {
-  if (state_ == msg::STATE_SAFE_HOLD) faults.push_back(msg::FAULT_PEER_LOST);
+  const int64_t now_ns = monotonic_now_ns();
+  const bool fresh = follower_state_.age_ns(now_ns) < static_cast<int64_t>(config_.peer_timeout_s * 1e9);
+  if (state_ == msg::STATE_SAFE_HOLD) faults.push_back(fresh ? msg::FAULT_NOT_IN_COMMAND : msg::FAULT_PEER_LOST);
   if (device_faults_ > 0) faults.push_back(msg::FAULT_HARDWARE);
 }
 
@@ -301,6 +322,9 @@ void LeaderNode::fill_report(runtime::NodeReport& report) const {
   report.add(twin_feedback_);
   if (tdpa_) tdpa_->fill_report(report);
   report.counters.emplace_back("peer_lost_events", static_cast<double>(peer_lost_events_));
+  report.counters.emplace_back("not_in_command_events", static_cast<double>(not_in_command_events_));
+  report.counters.emplace_back("cycles_not_in_command", static_cast<double>(cycles_not_in_command_));
+  report.counters.emplace_back("in_command", authority_->in_command() ? 1.0 : 0.0);
   report.counters.emplace_back("device_faults", static_cast<double>(device_faults_));
   report.counters.emplace_back("rejected_feedback", static_cast<double>(rejected_feedback_));
   report.counters.emplace_back("feedback_peak_nm", renderer_.peak_nm());

@@ -24,6 +24,7 @@
 #include "simulated_haptic_arm.h"
 #include "teleop/runtime/node_runner.h"
 #include "teleop/runtime/architecture.h"
+#include "teleop/runtime/command_authority.h"
 #include "teleop/runtime/tdpa_link.h"
 #include "teleop/transport/publication.h"
 #include "teleop/transport/subscription.h"
@@ -53,6 +54,8 @@ class LeaderNode final : public runtime::NodeLogic {
  private:
   runtime::Architecture architecture() const { return config_.teleoperation.architecture; }
   void poll_peers();
+  /// Watches whether the writer that carries this leader's commands under its architecture is in command.
+  void watch_authority(transport::Participant& participant, const std::string& self);
   void update_state(int64_t now_ns);
   void move_device(double t_s);
   void send_command(bool frozen);
@@ -75,6 +78,7 @@ class LeaderNode final : public runtime::NodeLogic {
   transport::Subscription<msg::WrenchStamped> follower_wrench_;
   transport::Subscription<msg::JointTorque> twin_feedback_;
   std::optional<runtime::TdpaLink> tdpa_;
+  std::optional<runtime::CommandAuthority> authority_;
   std::unique_ptr<LeaderDevice> device_impl_;  // none: the scripted device
   SimulatedHapticArm* haptic_arm_ = nullptr;     // device_impl_ when it is the haptic arm
   std::unique_ptr<ArmKinematics> device_kinematics_;
@@ -97,6 +101,8 @@ class LeaderNode final : public runtime::NodeLogic {
   Eigen::Vector3d command_position_ = Eigen::Vector3d::Constant(std::nan(""));
   bool peer_was_lost_ = false;
   uint64_t peer_lost_events_ = 0;
+  uint64_t not_in_command_events_ = 0;
+  uint64_t cycles_not_in_command_ = 0;
   uint64_t device_faults_ = 0;
   uint64_t rejected_feedback_ = 0;
 };

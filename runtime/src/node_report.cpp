@@ -142,6 +142,8 @@ const std::initializer_list<Field<PublishedTopic>> kPublishedFields{
     {"topic", &PublishedTopic::topic},
     {"sent", &PublishedTopic::sent},
     {"failed", &PublishedTopic::failed},
+    {"write_p99_ns", &PublishedTopic::write_p99_ns, true},
+    {"write_max_ns", &PublishedTopic::write_max_ns, true},
 };
 
 const std::initializer_list<Field<ReceivedTopic>> kReceivedFields{
@@ -167,6 +169,8 @@ const std::initializer_list<Field<ReceivedTopic>> kReceivedFields{
     {"sessions", &ReceivedTopic::sessions, true},
     {"refused_other_writer", &ReceivedTopic::refused_other_writer, true},
     {"refused_sequence_jump", &ReceivedTopic::refused_sequence_jump, true},
+    {"refused_not_accepted", &ReceivedTopic::refused_not_accepted, true},
+    {"refused_invalid", &ReceivedTopic::refused_invalid, true},
 };
 
 const std::initializer_list<Field<ImpairedLink>> kLinkFields{

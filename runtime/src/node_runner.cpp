@@ -17,6 +17,7 @@
 #include "teleop/runtime/shutdown_signal.h"
 #include "teleop/runtime/status_names.h"
 #include "flow_watch.h"
+#include "node_event_log.h"
 #include "status_publisher.h"
 #include "teleop/runtime/trace_recorder.h"
 #include "trace_stream.h"
@@ -103,6 +104,7 @@ Setup load_setup(const CommandLine& cli, const NodeDescription& description) {
   for (const std::string& spec : cli.sets) root.apply_override(spec);
   Setup setup{parse_node_config(root.child("node"), description.role_name), {}, {}};
   setup.transport = transport::parse_participant_config(root.child("transport"), setup.node.name);
+  setup.transport.warn_same_name = true;
   setup.build = description.parse(root);
   root.check_all_used();
   if (cli.duration_s) setup.node.duration_s = *cli.duration_s;
@@ -147,7 +149,7 @@ std::unique_ptr<TraceRecorder> make_trace_recorder(const CommandLine& cli, const
 
 // the fixed-rate loop; `trace` (may be null) gets one row per cycle
 void run_loop(const NodeConfig& node, NodeLogic& logic, StatusPublisher& status, RatePacer& pacer,
-              TraceRecorder* trace) {
+              TraceRecorder* trace, StateWatch& state_watch) {
   const int64_t start_ns = monotonic_now_ns();
   const int64_t end_ns = node.duration_s > 0 ? start_ns + static_cast<int64_t>(node.duration_s * 1e9) : INT64_MAX;
   pacer.start();
@@ -158,7 +160,8 @@ void run_loop(const NodeConfig& node, NodeLogic& logic, StatusPublisher& status,
     if (shutdown_requested() || tick.now_ns >= end_ns) break;
     logic.cycle(tick);
     if (trace != nullptr) logic.trace_row(trace->begin_row({tick.now_ns, wall_ns, tick.now_ns - tick.deadline_ns}));
-    status.maybe_publish(tick, logic, pacer.stats());
+    const bool changed = state_watch.after_cycle(tick, logic, pacer.stats());
+    status.maybe_publish(tick, logic, pacer.stats(), changed);
   }
 }
 
@@ -184,15 +187,22 @@ int run(const CommandLine& cli, const NodeDescription& description) {
     if (trace && cli.trace_stream) stream = std::make_unique<TraceStream>(*trace, cli.trace_path);
     StatusPublisher status(participant, node.name, description.role, node.rate_hz, node.status_rate_hz);
     const FlowWatch flow_watch(participant, node.name, setup.transport.domain_id);
+    NodeEventLog event_log(participant.events(), node.name);
+    StateWatch state_watch(participant.events());
     MonotonicClock clock;
     RatePacer pacer(clock, node.period_ns(), node.max_catch_up_cycles);
 
     if (const std::string problem = apply_realtime(node.realtime); !problem.empty()) {
       if (node.realtime.mode == RealtimeMode::kRequired) throw std::runtime_error("real-time setup: " + problem);
       spdlog::warn("{}: running without real-time scheduling: {}", node.name, problem);
+    } else if (node.realtime.mode != RealtimeMode::kOff) {
+      const ThreadCensus census = keep_other_threads_below();
+      spdlog::info("{}: the loop at SCHED_FIFO {}; its {} other threads (DDS, log, trace) at SCHED_OTHER below it{}",
+                   node.name, node.realtime.priority, census.threads,
+                   census.demoted > 0 ? fmt::format(" ({} put back from a real-time policy)", census.demoted) : "");
     }
     started_ns = monotonic_now_ns();
-    run_loop(node, *logic, status, pacer, trace.get());
+    run_loop(node, *logic, status, pacer, trace.get(), state_watch);
     if (trace) trace->finish();
     // bounded, so that shutdown stays well inside 100 ms even with a dead status reader
     status.publish_stopping(*logic, pacer.stats(), 50 * kNsPerMs);

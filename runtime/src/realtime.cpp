@@ -1,10 +1,13 @@
 #include "teleop/runtime/realtime.h"
 
+#include <dirent.h>
 #include <pthread.h>
 #include <sched.h>
 #include <sys/mman.h>
+#include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 
 namespace teleop::runtime {
@@ -22,6 +25,25 @@ std::string apply_realtime(const RealtimeConfig& config) {
            " (needs CAP_SYS_NICE or an rtprio limit)";
   }
   return {};
+}
+
+ThreadCensus keep_other_threads_below() {
+  ThreadCensus census;
+  const pid_t self = gettid();
+  DIR* tasks = opendir("/proc/self/task");
+  if (tasks == nullptr) return census;
+  while (const dirent* entry = readdir(tasks)) {
+    const pid_t tid = static_cast<pid_t>(std::atoi(entry->d_name));
+    if (tid <= 0 || tid == self) continue;
+    ++census.threads;
+    const int policy = sched_getscheduler(tid);
+    if (policy != SCHED_FIFO && policy != SCHED_RR) continue;
+    ++census.realtime;
+    sched_param normal{};
+    if (sched_setscheduler(tid, SCHED_OTHER, &normal) == 0) ++census.demoted;
+  }
+  closedir(tasks);
+  return census;
 }
 
 }  // namespace teleop::runtime

@@ -30,8 +30,20 @@ const char* fault_name(uint32_t fault_code) {
     case msg::FAULT_HARDWARE: return "hardware";
     case msg::FAULT_CONTACT_REFLEX: return "contact_reflex";
     case msg::FAULT_SPEED_REFLEX: return "speed_reflex";
+    case msg::FAULT_NOT_IN_COMMAND: return "not_in_command";
   }
   return "unknown_fault";
+}
+
+const char* refusal_name(uint32_t refusal) {
+  switch (refusal) {
+    case msg::REFUSAL_NONE: return "none";
+    case msg::REFUSAL_OTHER_WRITER: return "other_writer";
+    case msg::REFUSAL_NOT_ACCEPTED: return "not_accepted";
+    case msg::REFUSAL_SEQUENCE_JUMP: return "sequence_jump";
+    case msg::REFUSAL_INVALID: return "invalid";
+  }
+  return "unknown_refusal";
 }
 
 const char* role_name(msg::NodeRole role) {

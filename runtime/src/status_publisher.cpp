@@ -31,6 +31,20 @@ void StatusPublisher::init_flows(const transport::Participant& participant) {
   }
 }
 
+// whom the flow follows, and what it refused (fixed-size names: no allocation)
+void StatusPublisher::fill_authority(const transport::FlowAuthority& a, msg::FlowStatus& f) {
+  f.following(a.following.text);
+  f.following_writer(a.following_writer.text);
+  f.in_force(a.in_force);
+  f.refused_other_writer(a.refused[msg::REFUSAL_OTHER_WRITER]);
+  f.refused_not_accepted(a.refused[msg::REFUSAL_NOT_ACCEPTED]);
+  f.refused_sequence_jump(a.refused[msg::REFUSAL_SEQUENCE_JUMP]);
+  f.refused_invalid(a.refused[msg::REFUSAL_INVALID]);
+  f.refused_source(a.refused_source.text);
+  f.refusal(a.refusal);
+  f.refusal_detail(a.refusal_detail.text);
+}
+
 void StatusPublisher::fill_flows() {
   auto& out = publication_.sample().flows();
   const int64_t now_ns = monotonic_now_ns();
@@ -44,6 +58,7 @@ void StatusPublisher::fill_flows() {
     f.latency_ns(status.latency_ns.load(std::memory_order_relaxed));
     const int64_t last = status.last_data_mono_ns.load(std::memory_order_relaxed);
     f.age_ns(last == 0 ? -1 : now_ns - last);
+    fill_authority(status.authority, f);
   }
 }
 
@@ -70,8 +85,9 @@ void StatusPublisher::fill_links() {
   }
 }
 
-void StatusPublisher::maybe_publish(const CycleTick& tick, const NodeLogic& logic, const PacerStats& loop) {
-  if (tick.index % cycles_per_status_ == 0) publish(logic.state(), logic, loop);
+void StatusPublisher::maybe_publish(const CycleTick& tick, const NodeLogic& logic, const PacerStats& loop,
+                                    bool changed) {
+  if (changed || tick.index % cycles_per_status_ == 0) publish(logic.state(), logic, loop);
 }
 
 void StatusPublisher::publish(msg::NodeState state, const NodeLogic& logic, const PacerStats& loop) {

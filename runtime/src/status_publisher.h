@@ -16,8 +16,10 @@ class StatusPublisher {
   StatusPublisher(transport::Participant& participant, const std::string& node_name, msg::NodeRole role,
                   double loop_rate_hz, double status_rate_hz);
 
-  /// Publishes when a status period has passed since the last one. Real-time safe.
-  void maybe_publish(const CycleTick& tick, const NodeLogic& logic, const PacerStats& loop);
+  /// Publishes when a status period has passed since the last one, or at once when the node's
+  /// state or faults `changed` (a leader waits for its follower's word that it follows it).
+  /// Real-time safe.
+  void maybe_publish(const CycleTick& tick, const NodeLogic& logic, const PacerStats& loop, bool changed = false);
   /// Publishes now with the given state.
   void publish(msg::NodeState state, const NodeLogic& logic, const PacerStats& loop);
   /// Publishes STATE_STOPPING and waits (at most `timeout_ns`) until the status readers have it,
@@ -28,6 +30,7 @@ class StatusPublisher {
   void init_flows(const transport::Participant& participant);
   void fill_links();
   void fill_flows();
+  static void fill_authority(const transport::FlowAuthority& a, msg::FlowStatus& f);
 
   const transport::impairment::ImpairmentEngine* impairment_;
   std::vector<transport::impairment::ImpairmentEngine::Snapshot> links_;

@@ -140,6 +140,51 @@ TEST_F(FollowerNodeTest, HoldsItsPoseWhenCommandsStopAndResumesWhenTheyReturn) {
   EXPECT_EQ(node->state(), msg::STATE_RUNNING);
 }
 
+// the loop stopped for longer than the command timeout (a stopped or starved process): the
+// backlog's newest command is far from where the arm is, and is joined, not stepped to
+TEST_F(FollowerNodeTest, AStallOfItsOwnLoopIsAHoldAndTheNewestCommandIsJoinedNotSteppedTo) {
+  for (int i = 0; i < 500; ++i) step(0.0);
+  ASSERT_EQ(node->state(), msg::STATE_RUNNING);
+  const robot::ArmState before = node->arm();
+  // while the loop stood still, the leader moved on by 0.2 rad on every joint but the shoulder
+  leader->command_offset(0.2);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  harness.index += 200;
+  node->cycle(harness.tick());
+  EXPECT_EQ(node->state(), msg::STATE_SAFE_HOLD) << "a stall is a hold";
+  EXPECT_TRUE(has_fault(msg::FAULT_LOOP_OVERRUN));
+  EXPECT_EQ(counter("stall_holds"), 1.0);
+  EXPECT_EQ(counter("watchdog_trips"), 0.0);
+  // the commands flow again: the arm joins them at the rejoin speed (0.5 rad/s), no step
+  double largest_step = 0.0;
+  robot::ArmState last = node->arm();
+  for (int i = 0; i < 100; ++i) {
+    step(0.2);
+    for (size_t j = 0; j < kJoints; ++j) largest_step = std::max(largest_step, std::abs(node->arm().q_rad[j] - last.q_rad[j]));
+    last = node->arm();
+  }
+  EXPECT_EQ(node->state(), msg::STATE_RUNNING);
+  EXPECT_LT(largest_step, 0.002) << "0.5 rad/s is 0.5 mrad per cycle; a step would be 0.2 rad";
+  EXPECT_LT(std::abs(node->arm().q_rad[0] - before.q_rad[0]), 0.08) << "still on its way after 100 cycles";
+}
+
+TEST_F(FollowerNodeTest, ACommandOfTheWrongSizeIsNotInForceAndTheFlowSaysWhy) {
+  for (int i = 0; i < 50; ++i) step(0.0);
+  leader->command.sample().q_des_rad().resize(6);
+  ASSERT_TRUE(leader->command.publish());
+  ASSERT_TRUE(test::eventually([&] {
+    cycle();
+    return counter("rejected_wrong_size") > 0;
+  }));
+  const auto flows = harness.node_participant.reader_flows();
+  const auto flow = std::find_if(flows.begin(), flows.end(), [](const auto& f) { return f.topic == "teleop/leader/joint_command"; });
+  ASSERT_NE(flow, flows.end());
+  EXPECT_FALSE(flow->status->authority.in_force);
+  EXPECT_EQ(flow->status->authority.following.view(), "leader");
+  EXPECT_EQ(flow->status->authority.refusal, msg::REFUSAL_INVALID);
+  EXPECT_EQ(flow->status->authority.refusal_detail.view(), "rejected_wrong_size");
+}
+
 TEST_F(FollowerNodeTest, RejectsAndCountsNonFiniteAndMixedModeCommands) {
   for (int i = 0; i < 100; ++i) step(0.0);
   auto& c = leader->command.sample();

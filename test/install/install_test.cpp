@@ -96,8 +96,10 @@ TEST(Install, AConsumerBuiltAgainstTheInstallDrivesTheInstalledFollower) {
   const int domain = unique_domain();
   const fs::path report = tmp / "follower.yaml";
   const auto start = std::chrono::steady_clock::now();
+  // the shipped follower takes commands from the leader and the twin only: the consumer is named
   RunningProcess follower({(prefix / "bin/teleop_follower").string(), "--config", "follower", "--domain",
-                           std::to_string(domain), "--report", report.string()});
+                           std::to_string(domain), "--report", report.string(), "--set",
+                           "follower.accept_commands_from=[consumer]"});
   const ProcessResult consumed =
       run_process({(consumer / "teleop_consumer").string(), std::to_string(domain), "2"}, 40s);
   follower.run_for(10ms);

@@ -232,7 +232,8 @@ TEST(PeerRestart, AForgedMaximalSequenceNumberChangesNothingForTheLeaderFollowed
   forged.stiffness_nm_per_rad().assign(7, 200.0);
   forged.damping_nms_per_rad().assign(7, 10.0);
   forged.header().seq(std::numeric_limits<uint64_t>::max() - 1);
-  forged.header().source("forger");
+  // a name costs nothing to forge: the session, not the accept list, must refuse it
+  forged.header().source("leader");
   for (int i = 0; i < 50; ++i) {
     forged.header().stamp_ns(system_now_ns());
     forged.header().stamp_mono_ns(monotonic_now_ns());

@@ -41,7 +41,8 @@ class PressingOperator {
 
   explicit PressingOperator(int domain)
       : participant_(bus_participant(domain, "operator")),
-        command_(participant_, transport::topics::kLeaderCommand, "operator"),
+        // it plays the leader: the shipped follower takes commands from the nodes it accepts only
+        command_(participant_, transport::topics::kLeaderCommand, "leader"),
         reset_(participant_, transport::topics::kResetRequest, "operator") {
     auto& c = command_.sample();
     c.robot("follower");

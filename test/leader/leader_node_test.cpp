@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <thread>
 
@@ -24,13 +25,34 @@ LeaderConfig config() {
   return c;
 }
 
-// the follower's side: reads commands, publishes state
+// the follower's side: reads commands, publishes state, and says in its status that it follows
+// the leader's commands (a leader is running only while they are in force)
 struct FollowerPeer {
   transport::Subscription<msg::JointCommand> command;
   transport::Publication<msg::JointState> state;
+  transport::Publication<msg::NodeStatus> status;
   explicit FollowerPeer(transport::Participant& p)
-      : command(p, transport::topics::kLeaderCommand), state(p, transport::topics::kFollowerState, "follower") {
+      : command(p, transport::topics::kLeaderCommand),
+        state(p, transport::topics::kFollowerState, "follower"),
+        status(p, transport::topics::kNodeStatus, "follower") {
     transport::presize_joint_state(state.sample(), kJoints);
+    status.sample().role(msg::ROLE_FOLLOWER);
+    status.sample().state(msg::STATE_RUNNING);
+    status.sample().flows().emplace_back();
+    status.sample().flows().back().topic(transport::topics::kLeaderCommand.name);
+    status.sample().flows().back().awaited(true);
+    status.sample().flows().back().in_force(true);
+  }
+  // publishes the state, and the status once the leader's commands arrive
+  bool publish() {
+    command.poll();
+    if (command.has_sample()) {
+      auto& flow = status.sample().flows().back();
+      flow.following("leader");
+      flow.following_writer(command.session().writer().hex().data());
+      if (!status.publish()) return false;
+    }
+    return state.publish();
   }
 };
 
@@ -46,7 +68,7 @@ class LeaderNodeTest : public ::testing::Test {
 
   void step(bool follower_alive) {
     if (follower_alive) {
-      ASSERT_TRUE(follower.state.publish());
+      ASSERT_TRUE(follower.publish());
     }
     std::this_thread::sleep_for(std::chrono::microseconds(500));
     node.cycle(harness.tick());
@@ -102,11 +124,39 @@ TEST_F(LeaderNodeTest, FreezesTheCommandWhenTheFollowerGoesSilent) {
   for (double dq : follower.command.latest().dq_des_radps()) EXPECT_EQ(dq, 0.0);
 }
 
+TEST_F(LeaderNodeTest, IsNotInCommandWhileTheFollowerFollowsAnotherWriterAndRendersNothing) {
+  for (int i = 0; i < 200; ++i) step(true);
+  ASSERT_EQ(node.state(), msg::STATE_RUNNING);
+  // the follower now follows someone else
+  auto& flow = follower.status.sample().flows().back();
+  for (int i = 0; i < 100; ++i) {
+    flow.following("rogue");
+    flow.following_writer("");
+    ASSERT_TRUE(follower.status.publish());
+    ASSERT_TRUE(follower.state.publish());
+    std::this_thread::sleep_for(std::chrono::microseconds(500));
+    node.cycle(harness.tick());
+  }
+  EXPECT_EQ(node.state(), msg::STATE_SAFE_HOLD);
+  std::vector<uint32_t> faults;
+  node.active_faults(faults);
+  EXPECT_EQ(faults, std::vector<uint32_t>{msg::FAULT_NOT_IN_COMMAND});
+  runtime::NodeReport report;
+  node.fill_report(report);
+  const auto in_command = std::find_if(report.counters.begin(), report.counters.end(),
+                                       [](const auto& c) { return c.first == "in_command"; });
+  ASSERT_NE(in_command, report.counters.end());
+  EXPECT_EQ(in_command->second, 0.0);
+  // the follower follows the leader again: running again
+  for (int i = 0; i < 100; ++i) step(true);
+  EXPECT_EQ(node.state(), msg::STATE_RUNNING);
+}
+
 TEST_F(LeaderNodeTest, CycleDoesNotAllocate) {
   for (int i = 0; i < 200; ++i) step(true);
   uint64_t allocations = 0;
   for (int i = 0; i < 1000; ++i) {
-    ASSERT_TRUE(follower.state.publish());
+    ASSERT_TRUE(follower.publish());
     std::this_thread::sleep_for(std::chrono::microseconds(500));
     const CycleTick tick = harness.tick();
     test::ScopedAllocationCounter counter;
@@ -145,7 +195,7 @@ class FeedbackFadeTest : public ::testing::Test {
   // one cycle; returns the torque the device rendered on joint 1
   double step(bool follower_alive) {
     if (follower_alive) {
-      EXPECT_TRUE(follower.state.publish());
+      EXPECT_TRUE(follower.publish());
     }
     std::this_thread::sleep_for(std::chrono::microseconds(500));
     node.cycle(harness.tick());

@@ -76,5 +76,57 @@ TEST(MonitorView, ANodeWhoseStatusStopsIsShownSilent) {
   EXPECT_NE(view.lines(9000 * kMs).find("state=stopping"), std::string::npos);
 }
 
+WriterId writer(uint8_t id) {
+  WriterId w;
+  w.bytes.fill(id);
+  return w;
+}
+
+TEST(MonitorView, TwoNodesOfOneNameAreShownAsSuchNotMerged) {
+  MonitorView view;
+  // two setups on one domain, both with a node called follower: their statuses alternate
+  for (int i = 0; i < 4; ++i) {
+    view.update(status("follower", msg::STATE_RUNNING, i * 100 * kMs, 100 * i), i * 100 * kMs, writer(i % 2 ? 2 : 1));
+  }
+  EXPECT_NE(view.lines(400 * kMs).find("state=DUPLICATE NAME (2 nodes)"), std::string::npos) << view.lines(400 * kMs);
+}
+
+TEST(MonitorView, ARestartedNodeIsNotADuplicate) {
+  MonitorView view;
+  view.update(status("follower", msg::STATE_RUNNING, 0, 0), 0, writer(1));
+  view.update(status("follower", msg::STATE_RUNNING, 100 * kMs, 100), 100 * kMs, writer(1));
+  // killed and started again: a new status writer from now on
+  view.update(status("follower", msg::STATE_STARTING, 300 * kMs, 0), 300 * kMs, writer(2));
+  view.update(status("follower", msg::STATE_RUNNING, 400 * kMs, 100), 400 * kMs, writer(2));
+  EXPECT_NE(view.lines(400 * kMs).find("state=running"), std::string::npos) << view.lines(400 * kMs);
+}
+
+TEST(MonitorView, ShowsWhomAFlowFollowsAndWhatItRefuses) {
+  MonitorView view;
+  msg::NodeStatus s = status("follower", msg::STATE_RUNNING, 0, 0);
+  s.flows().resize(1);
+  auto& f = s.flows()[0];
+  f.topic("teleop/leader/joint_command");
+  f.awaited(true);
+  f.writers(2);
+  f.following("leader");
+  f.in_force(true);
+  f.refused_other_writer(5123);
+  f.refused_source("rogue");
+  f.refusal(msg::REFUSAL_OTHER_WRITER);
+  view.update(s, 0);
+  const std::string table = view.table(0, 1);
+  EXPECT_NE(table.find("following leader, refused 5123 (last: rogue other_writer)"), std::string::npos) << table;
+  f.in_force(false);
+  f.refused_invalid(3);
+  f.refused_source("leader");
+  f.refusal(msg::REFUSAL_INVALID);
+  f.refusal_detail("rejected_wrong_size");
+  view.update(s, kMs);
+  EXPECT_NE(view.lines(kMs).find("following leader (NOT IN FORCE), refused 5126 (last: leader invalid rejected_wrong_size)"),
+            std::string::npos)
+      << view.lines(kMs);
+}
+
 }  // namespace
 }  // namespace teleop::tools

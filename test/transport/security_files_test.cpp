@@ -81,6 +81,19 @@ TEST_F(SecurityFiles, NamesACertificateWhereACaShouldBe) {
       << error_of(c);
 }
 
+TEST_F(SecurityFiles, NamesPermissionsThatGrantNothingToTheCertificatesSubject) {
+  // the follower's permissions beside the leader's certificate: both genuine, signed by the CA
+  SecurityConfig c = config_of("leader");
+  c.permissions = config_of("follower").permissions;
+  const std::string error = error_of(c);
+  EXPECT_EQ(error.rfind("security.permissions " + c.permissions + ": grants nothing to the subject of identity_certificate " +
+                            c.identity_certificate,
+                        0),
+            0u)
+      << error;
+  EXPECT_NE(error.find("it names CN=follower,O=teleop"), std::string::npos) << error;
+}
+
 TEST_F(SecurityFiles, NamesAFileThatIsNotPem) {
   SecurityConfig c = config_of("leader");
   c.identity_certificate = c.permissions;  // S/MIME, not a certificate

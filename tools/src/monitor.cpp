@@ -18,9 +18,10 @@ int run_monitor(const BusOptions& options, const MonitorOptions& monitor, FILE* 
   MonitorView view;
   Bus bus(options, "teleop_monitor");
   auto reader = bus.participant().make_reader(
-      transport::topics::kNodeStatus, std::function<void(const msg::NodeStatus&)>([&](const msg::NodeStatus& s) {
+      transport::topics::kNodeStatus,
+      std::function<void(const msg::NodeStatus&, const WriterId&)>([&](const msg::NodeStatus& s, const WriterId& w) {
         std::lock_guard lock(mutex);
-        view.update(s, monotonic_now_ns());
+        view.update(s, monotonic_now_ns(), w);
       }));
   (void)reader;
   const int64_t start_ns = monotonic_now_ns();

@@ -53,7 +53,20 @@ struct FlowNumbers {
   bool awaited;
   int writers;
   std::string age, latency, loss;
+  std::string authority;  // whom it follows, what it refused
 };
+
+// "following leader, refused 1234 (rogue: other_writer)"; "" when it follows no one yet
+std::string authority_text(const msg::FlowStatus& f) {
+  if (f.following().size() == 0) return "";
+  std::string text = fmt::format("following {}{}", f.following().c_str(), f.in_force() ? "" : " (NOT IN FORCE)");
+  const uint64_t refused =
+      f.refused_other_writer() + f.refused_not_accepted() + f.refused_sequence_jump() + f.refused_invalid();
+  if (refused == 0) return text;
+  std::string why = runtime::refusal_name(f.refusal());
+  if (f.refusal_detail().size() > 0) why += std::string(" ") + f.refusal_detail().c_str();
+  return text + fmt::format(", refused {} (last: {} {})", refused, f.refused_source().c_str(), why);
+}
 
 FlowNumbers flow_numbers(const msg::FlowStatus& f, const msg::FlowStatus* before) {
   const double loss = before ? loss_percent(f.received(), f.lost(), before->received(), before->lost())
@@ -63,7 +76,8 @@ FlowNumbers flow_numbers(const msg::FlowStatus& f, const msg::FlowStatus* before
           f.writers(),
           f.age_ns() < 0 ? "never" : ms(static_cast<double>(f.age_ns())),
           f.received() > 0 ? ms(static_cast<double>(f.latency_ns())) : "-",
-          pct(loss)};
+          pct(loss),
+          authority_text(f)};
 }
 
 struct LinkNumbers {
@@ -82,8 +96,14 @@ LinkNumbers link_numbers(const msg::LinkStatistics& l, const msg::LinkStatistics
 
 }  // namespace
 
-void MonitorView::update(const msg::NodeStatus& status, int64_t now_ns) {
+void MonitorView::update(const msg::NodeStatus& status, int64_t now_ns, const WriterId& writer) {
   Node& node = nodes_[status.header().source().c_str()];
+  const auto heard = node.writers.find(writer.bytes);
+  const bool back = node.seen && writer.bytes != node.last_writer && heard != node.writers.end() &&
+                    now_ns - heard->second <= silent_after_ns_;
+  if (back) node.clash_until_ns = now_ns + silent_after_ns_;
+  node.writers[writer.bytes] = now_ns;
+  node.last_writer = writer.bytes;
   if (node.seen) {
     node.previous = node.last;
     node.has_previous = true;
@@ -93,7 +113,15 @@ void MonitorView::update(const msg::NodeStatus& status, int64_t now_ns) {
   node.received_ns = now_ns;
 }
 
+size_t MonitorView::live_writers(const Node& node, int64_t now_ns) const {
+  size_t n = 0;
+  for (const auto& [writer, seen_ns] : node.writers) n += now_ns - seen_ns <= silent_after_ns_ ? 1 : 0;
+  return n;
+}
+
 std::string MonitorView::state_text(const Node& node, int64_t now_ns) const {
+  // two nodes with one name (two setups on one domain): their statuses alternate under it
+  if (now_ns < node.clash_until_ns) return fmt::format("DUPLICATE NAME ({} nodes)", live_writers(node, now_ns));
   const int64_t silent_ns = now_ns - node.received_ns;
   if (silent_ns > silent_after_ns_ && node.last.state() != msg::STATE_STOPPING) {
     return fmt::format("SILENT {:.1f} s (was {})", silent_ns * 1e-9, runtime::state_name(node.last.state()));
@@ -120,11 +148,11 @@ std::string MonitorView::table(int64_t now_ns, int domain_id) const {
                         s.can_bus_state().size() > 0 ? s.can_bus_state().c_str() : "-");
     for (const auto& f : s.flows()) {
       const FlowNumbers n = flow_numbers(f, node.has_previous ? flow_named(node.previous, f.topic().c_str()) : nullptr);
-      text += fmt::format("   <- {:<34} {}  age {}  latency {}  loss {}\n", n.topic,
+      text += fmt::format("   <- {:<34} {}  age {}  latency {}  loss {}{}\n", n.topic,
                           n.writers > 0 ? fmt::format("{} writer{}", n.writers, n.writers == 1 ? "" : "s")
                           : n.awaited   ? std::string("WAITING FOR A WRITER")
                                         : std::string("no writer (optional)"),
-                          n.age, n.latency, n.loss);
+                          n.age, n.latency, n.loss, n.authority.empty() ? "" : "  " + n.authority);
     }
     for (const auto& l : s.links()) {
       const LinkNumbers n = link_numbers(l, node.has_previous ? link_to(node.previous, l.peer().c_str()) : nullptr);
@@ -148,8 +176,9 @@ std::string MonitorView::lines(int64_t now_ns) const {
     if (s.can_bus_state().size() > 0) text += fmt::format(" can={}", s.can_bus_state().c_str());
     for (const auto& f : s.flows()) {
       const FlowNumbers n = flow_numbers(f, node.has_previous ? flow_named(node.previous, f.topic().c_str()) : nullptr);
-      text += fmt::format(" flow[{} writers={}{} age={} latency={} loss={}]", n.topic, n.writers,
-                          n.awaited ? "" : " optional", n.age, n.latency, n.loss);
+      text += fmt::format(" flow[{} writers={}{} age={} latency={} loss={}{}]", n.topic, n.writers,
+                          n.awaited ? "" : " optional", n.age, n.latency, n.loss,
+                          n.authority.empty() ? "" : " " + n.authority);
     }
     for (const auto& l : s.links()) {
       const LinkNumbers n = link_numbers(l, node.has_previous ? link_to(node.previous, l.peer().c_str()) : nullptr);

@@ -1,9 +1,13 @@
 #include "discovery_listener.h"
 
+#include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastrtps/utils/IPLocator.h>
+
+#include <spdlog/spdlog.h>
 
 #include <cstring>
 #include <optional>
+#include <sstream>
 #include <vector>
 
 namespace teleop::transport {
@@ -12,6 +16,7 @@ namespace {
 using eprosima::fastrtps::rtps::GUID_t;
 using eprosima::fastrtps::rtps::IPLocator;
 using eprosima::fastrtps::rtps::Locator_t;
+using eprosima::fastrtps::rtps::ParticipantAuthenticationInfo;
 using eprosima::fastrtps::rtps::ParticipantDiscoveryInfo;
 using eprosima::fastrtps::rtps::ParticipantProxyData;
 using eprosima::fastrtps::rtps::ReaderDiscoveryInfo;
@@ -61,7 +66,7 @@ std::optional<EndpointInfo> endpoint_of(const ProxyData& data, bool is_writer, N
 
 }  // namespace
 
-void DiscoveryListener::on_participant_discovery(eprosima::fastdds::dds::DomainParticipant*,
+void DiscoveryListener::on_participant_discovery(eprosima::fastdds::dds::DomainParticipant* p,
                                                  ParticipantDiscoveryInfo&& info) {
   const std::string name = info.info.m_participantName.to_string();
   const bool gone = info.status == ParticipantDiscoveryInfo::REMOVED_PARTICIPANT ||
@@ -76,6 +81,12 @@ void DiscoveryListener::on_participant_discovery(eprosima::fastdds::dds::DomainP
       for (const auto& l : info.info.metatraffic_locators.unicast) locators.push_back(l);
       engine_->peers().add(name, locators);
     }
+  }
+  if (!gone && !own_name_.empty() && name == own_name_ && p != nullptr && info.info.m_guid.guidPrefix != p->guid().guidPrefix &&
+      info.status == ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT) {
+    spdlog::warn("{}: another participant named '{}' joined domain {} from host {}: nodes of one name mix their "
+                 "samples and cannot be told apart by name; give each node a node.name of its own",
+                 own_name_, name, p->get_domain_id(), host_of(info.info));
   }
   if (observer_) {
     ParticipantInfo participant;
@@ -98,5 +109,18 @@ void DiscoveryListener::on_subscriber_discovery(eprosima::fastdds::dds::DomainPa
   const bool gone = info.status == ReaderDiscoveryInfo::REMOVED_READER;
   if (auto endpoint = endpoint_of(info.info, false, naming_)) observer_->on_endpoint(*endpoint, !gone);
 }
+
+#if HAVE_SECURITY
+void DiscoveryListener::onParticipantAuthentication(eprosima::fastdds::dds::DomainParticipant* participant,
+                                                    ParticipantAuthenticationInfo&& info) {
+  if (info.status != ParticipantAuthenticationInfo::UNAUTHORIZED_PARTICIPANT) return;
+  std::ostringstream guid;
+  guid << info.guid;
+  spdlog::warn("{}: refused the security handshake of participant {} in domain {}: its identity did not verify "
+               "against our identity CA or its permissions do not let it join (Fast DDS's security errors above "
+               "name the check that failed)",
+               own_name_.empty() ? "participant" : own_name_, guid.str(), participant->get_domain_id());
+}
+#endif
 
 }  // namespace teleop::transport

@@ -16,9 +16,10 @@ class DiscoveryListener : public eprosima::fastdds::dds::DomainParticipantListen
  public:
   /// Either may be null. The observer hears of topics by their teleop names under `naming`
   /// (naming.h): a tool works with the same names on a plain and a ros2-named domain.
+  /// `own_name`: warn when another participant of this name appears (empty: no check).
   DiscoveryListener(std::shared_ptr<impairment::ImpairmentEngine> engine, DiscoveryObserver* observer,
-                    Naming naming)
-      : engine_(std::move(engine)), observer_(observer), naming_(naming) {}
+                    Naming naming, std::string own_name = {})
+      : engine_(std::move(engine)), observer_(observer), naming_(naming), own_name_(std::move(own_name)) {}
 
   void on_participant_discovery(eprosima::fastdds::dds::DomainParticipant*,
                                 eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override;
@@ -26,11 +27,17 @@ class DiscoveryListener : public eprosima::fastdds::dds::DomainParticipantListen
                               eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override;
   void on_subscriber_discovery(eprosima::fastdds::dds::DomainParticipant*,
                                eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) override;
+#if HAVE_SECURITY
+  /// A refused handshake is logged when it happens, with the participant it came from.
+  void onParticipantAuthentication(eprosima::fastdds::dds::DomainParticipant* participant,
+                                   eprosima::fastrtps::rtps::ParticipantAuthenticationInfo&& info) override;
+#endif
 
  private:
   std::shared_ptr<impairment::ImpairmentEngine> engine_;
   DiscoveryObserver* observer_;
   Naming naming_;
+  std::string own_name_;
 };
 
 /// The property a participant announces its host name in.

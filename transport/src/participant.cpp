@@ -174,8 +174,9 @@ Participant::Participant(const ParticipantConfig& config, DiscoveryObserver* obs
                  config.impairment.seed, config.impairment.exclude_discovery ? ", discovery unimpaired" : "");
     for (const auto& l : config.impairment.links) spdlog::info("{}: link to {}: profile {}", config.name, l.to, l.profile.name);
   }
-  if (impairment_ || observer) {
-    discovery_listener_ = std::make_unique<DiscoveryListener>(impairment_, observer, config.naming);
+  if (impairment_ || observer || config.warn_same_name || config.security.enabled()) {
+    discovery_listener_ = std::make_unique<DiscoveryListener>(impairment_, observer, config.naming,
+                                                              config.warn_same_name ? config.name : std::string());
   }
   if (config.security.enabled()) verify_security_files(config.security);
   register_type_objects();

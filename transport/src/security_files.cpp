@@ -8,8 +8,12 @@
 #include <openssl/x509_vfy.h>
 #include <openssl/x509v3.h>
 
+#include <algorithm>
 #include <memory>
+#include <regex>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace teleop::transport {
 namespace {
@@ -94,18 +98,69 @@ void verify_private_key(const File& key_file, X509* cert, const File& cert_file)
   }
 }
 
-// an S/MIME document signed by the CA: any change to its text breaks the signature
-void verify_signed_document(const File& document, const File& ca_file, X509* ca) {
+// an S/MIME document signed by the CA: any change to its text breaks the signature; returns the
+// signed text
+std::string verify_signed_document(const File& document, const File& ca_file, X509* ca) {
   Bio bio = open(document);
   BIO* content = nullptr;
   Pkcs7 signature(SMIME_read_PKCS7(bio.get(), &content));
   Bio content_owner(content);
   if (!signature) throw failure(document, "is not an S/MIME signed document (" + openssl_error() + ")");
   Store store = store_of(ca);
-  if (PKCS7_verify(signature.get(), nullptr, store.get(), content, nullptr, PKCS7_TEXT) != 1) {
+  Bio text(BIO_new(BIO_s_mem()));
+  if (PKCS7_verify(signature.get(), nullptr, store.get(), content, text.get(), PKCS7_TEXT) != 1) {
     throw failure(document, std::string("signature does not verify against ") + ca_file.key + " " + ca_file.path +
                                 " (changed after signing, or signed by another CA): " + openssl_error());
   }
+  char* data = nullptr;
+  const long size = BIO_get_mem_data(text.get(), &data);
+  return size > 0 ? std::string(data, static_cast<size_t>(size)) : std::string();
+}
+
+using NameParts = std::vector<std::pair<std::string, std::string>>;
+
+// a distinguished name's attributes as (short name, value), in any order
+NameParts parts_of(const X509_NAME* name) {
+  NameParts parts;
+  for (int i = 0; i < X509_NAME_entry_count(name); ++i) {
+    const X509_NAME_ENTRY* entry = X509_NAME_get_entry(name, i);
+    const int nid = OBJ_obj2nid(X509_NAME_ENTRY_get_object(entry));
+    const ASN1_STRING* value = X509_NAME_ENTRY_get_data(entry);
+    parts.emplace_back(OBJ_nid2sn(nid), std::string(reinterpret_cast<const char*>(ASN1_STRING_get0_data(value)),
+                                                   static_cast<size_t>(ASN1_STRING_length(value))));
+  }
+  std::sort(parts.begin(), parts.end());
+  return parts;
+}
+
+// "CN=follower,O=teleop" (a permissions document's subject_name) as the same parts
+NameParts parts_of(const std::string& text) {
+  NameParts parts;
+  static const std::regex part(R"(\s*([A-Za-z]+)\s*=\s*([^,]*[^,\s])\s*(,|$))");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), part); it != std::sregex_iterator(); ++it) {
+    parts.emplace_back((*it)[1], (*it)[2]);
+  }
+  std::sort(parts.begin(), parts.end());
+  return parts;
+}
+
+// Fast DDS grants a participant the permissions whose subject_name is its certificate's subject;
+// a document for another subject leaves it with none, and it says only "initialization error"
+void verify_permissions_subject(const std::string& permissions_text, const File& permissions, X509* cert,
+                                const File& cert_file) {
+  const NameParts subject = parts_of(X509_get_subject_name(cert));
+  static const std::regex subject_name("<subject_name>([^<]*)</subject_name>");
+  std::string named;
+  for (auto it = std::sregex_iterator(permissions_text.begin(), permissions_text.end(), subject_name);
+       it != std::sregex_iterator(); ++it) {
+    if (parts_of((*it)[1].str()) == subject) return;
+    named += (named.empty() ? "" : ", ") + (*it)[1].str();
+  }
+  char* text = X509_NAME_oneline(X509_get_subject_name(cert), nullptr, 0);
+  const std::string ours = text != nullptr ? text : "?";
+  OPENSSL_free(text);
+  throw failure(permissions, "grants nothing to the subject of " + std::string(cert_file.key) + " " + cert_file.path +
+                                 " (" + ours + "); it names " + (named.empty() ? "no subject" : named));
 }
 
 }  // namespace
@@ -125,7 +180,8 @@ void verify_security_files(const SecurityConfig& s) {
 
   const Certificate permissions_authority = load_certificate(permissions_ca);
   verify_signed_document(governance, permissions_ca, permissions_authority.get());
-  verify_signed_document(permissions, permissions_ca, permissions_authority.get());
+  const std::string granted = verify_signed_document(permissions, permissions_ca, permissions_authority.get());
+  verify_permissions_subject(granted, permissions, cert.get(), identity);
 }
 
 }  // namespace teleop::transport

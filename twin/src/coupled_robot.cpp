@@ -13,11 +13,14 @@ CoupledRobot::CoupledRobot(transport::Participant& participant, const transport:
       q_rad_(start_rad),
       ramp_(joints, rejoin_speed_radps, cycle_s) {}
 
-bool CoupledRobot::update(int64_t now_ns, msg::NodeState& state) {
+bool CoupledRobot::update(int64_t now_ns, msg::NodeState& state, bool stalled) {
   // what the twin was pulled to until now: where it holds
   const JointVector held = q_rad();
-  if (sub_.poll() > 0 && !transport::read_joints(sub_.latest().q_rad(), joints_, q_rad_)) ++rejected_;
-  const bool fresh = sub_.age_ns(now_ns) < timeout_ns_;
+  if (sub_.poll() > 0 && !transport::read_joints(sub_.latest().q_rad(), joints_, q_rad_)) {
+    ++rejected_;
+    sub_.reject_latest(0, "wrong_size");
+  }
+  const bool fresh = !stalled && sub_.age_ns(now_ns) < timeout_ns_;
   if (fresh) {
     if (state != msg::STATE_RUNNING) ramp_.start(held);
     state = msg::STATE_RUNNING;

@@ -25,8 +25,10 @@ class CoupledRobot {
 
   /// Takes what arrived: a sample with the wrong joint count is rejected (counted) and the last
   /// angles kept. Returns whether the robot is fresh and moves `state` accordingly: running while
-  /// fresh, safe hold once a running robot lapsed. Real-time safe.
-  bool update(int64_t now_ns, msg::NodeState& state);
+  /// fresh, safe hold once a running robot lapsed. `stalled`: the twin's own loop missed more than
+  /// the timeout (common/stall_watch.h): a hold for this cycle, so that the newest angles of the
+  /// backlog are joined from the held ones, not stepped to. Real-time safe.
+  bool update(int64_t now_ns, msg::NodeState& state, bool stalled = false);
 
   /// The angles to pull the twin to: the robot's, or on the way there after a hold.
   const JointVector& q_rad() const { return ramp_.active() ? ramp_.reference() : q_rad_; }

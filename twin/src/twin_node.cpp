@@ -37,7 +37,8 @@ TwinNode::TwinNode(const TwinConfig& config, runtime::NodeContext& context)
       feedback_(context.participant, transport::topics::kTwinFeedback, context.node.name,
                 config.coupled_to == TwinConfig::CoupledTo::kLeader ? "leader_device" : "follower", "single", joints_,
                 {config.feedback_gain, config.feedback_cutoff_hz, context.node.rate_hz}),
-      observations_(sim_, context.participant, context.node.name) {
+      observations_(sim_, context.participant, context.node.name),
+      stall_watch_(static_cast<int64_t>(config.peer_timeout_s * 1e9)) {
   if (config.joints != joints_) {
     throw ConfigError("twin.joints is " + std::to_string(config.joints) + " but " + config.model.model_path +
                       " drives " + std::to_string(joints_) + " joints");
@@ -96,7 +97,7 @@ void TwinNode::cycle(const CycleTick& tick) {
 }
 
 void TwinNode::cycle_coupled(const CycleTick& tick) {
-  const bool fresh = coupled_->update(tick.now_ns, state_);
+  const bool fresh = coupled_->update(tick.now_ns, state_, stall_watch_.stalled(tick));
   // the follower's measurements move the twin's environment between steps
   if (correction_) correction_->cycle(sim_, sim_.config().period_s);
   // without a coupled robot the twin holds the last pose it was given
@@ -203,6 +204,8 @@ void TwinNode::fill_report(runtime::NodeReport& report) const {
     report.counters.emplace_back("lockstep_stalls", static_cast<double>(stalls_));
     report.counters.emplace_back("lockstep_first_step_resends", static_cast<double>(lockstep_->first_step_resends()));
     write_trajectory();
+  } else if (coupled_) {
+    report.counters.emplace_back("stall_holds", static_cast<double>(stall_watch_.stalls()));
   }
   if (hil_command_pub_) report.add(*hil_command_pub_);
   if (mmt_command_) report.add(mmt_command_->publication());

@@ -16,6 +16,7 @@
 #include "teleop/transport/publication.h"
 #include "teleop/transport/subscription.h"
 #include "coupled_robot.h"
+#include "teleop/common/stall_watch.h"
 #include "feedback_renderer.h"
 #include "hil_controller.h"
 #include "lockstep_link.h"
@@ -78,6 +79,8 @@ class TwinNode final : public runtime::NodeLogic {
   double goal_error_rad_ = -1.0;
   uint64_t rejected_samples_ = 0;
   uint64_t stalls_ = 0;
+  // real-time mode: a stall of our own loop holds for a cycle (common/stall_watch.h)
+  StallWatch stall_watch_;
   std::vector<double> trajectory_;
 };
 

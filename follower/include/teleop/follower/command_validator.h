@@ -95,6 +95,8 @@ class CommandValidator {
 
   uint64_t count(CommandIssue issue) const { return counts_[static_cast<size_t>(issue)]; }
   uint64_t rejected() const { return rejected_; }
+  /// Why the last rejected command was rejected (kCount before any).
+  CommandIssue last_rejection() const { return last_rejection_; }
   const JointLimits& limits() const { return limits_; }
 
  private:
@@ -122,6 +124,7 @@ class CommandValidator {
   StreamPosition last_joint_;
   StreamPosition last_cartesian_;
   uint64_t rejected_ = 0;
+  CommandIssue last_rejection_ = CommandIssue::kCount;
   std::array<uint64_t, static_cast<size_t>(CommandIssue::kCount)> counts_{};
 };
 

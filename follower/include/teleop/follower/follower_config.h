@@ -36,6 +36,9 @@ struct FollowerConfig {
   std::string ee_site = "ee_site";
   /// Where joint commands come from: the leader (teleoperation) or the twin (hardware in the loop).
   enum class CommandSource { kLeader, kTwin } command_source = CommandSource::kLeader;
+  /// The nodes (SampleHeader.source) whose commands are taken; empty: any node's. A name keeps
+  /// two setups apart on one domain; only DDS Security's permissions authenticate a writer.
+  std::vector<std::string> accept_commands_from;
   /// Command limits; the torque limits are further bounded by what the hardware reports.
   JointLimits limits;
   /// Largest change of commanded torque per second (infinite: none, `off` in YAML).

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "teleop/common/error_stats.h"
+#include "teleop/common/stall_watch.h"
 #include "teleop/follower/arm_control.h"
 #include "teleop/follower/safety_reflex.h"
 #include "teleop/follower/follower_config.h"
@@ -55,7 +56,8 @@ class FollowerNode final : public runtime::NodeLogic {
   void take(transport::Subscription<Command>& commands, Source source, uint64_t& last_session, int64_t now_system_ns,
             int64_t now_ns);
   void take_reset_requests();
-  void run_watchdog(int64_t now_ns);
+  /// `stalled`: the loop missed more than the command timeout since its last cycle.
+  void run_watchdog(int64_t now_ns, bool stalled);
   void run_reflex();
   bool source_lost(double silence_s) const;
   /// Makes `hold` a joint impedance at the current pose with these gains.
@@ -103,6 +105,10 @@ class FollowerNode final : public runtime::NodeLogic {
   JointVector command_nm_{};
   // counters and metrics for the report
   uint64_t watchdog_trips_ = 0;
+  uint64_t stall_holds_ = 0;
+  // why the robot holds (msg::FAULT_*), while it holds
+  uint32_t hold_cause_ = msg::FAULT_STALE_INPUT;
+  StallWatch stall_watch_;
   uint64_t liveliness_trips_ = 0;
   double watchdog_latency_max_s_ = 0.0;
   uint64_t hardware_faults_ = 0;

@@ -15,6 +15,9 @@ struct PublishedTopic {
   std::string topic;
   uint64_t sent = 0;
   uint64_t failed = 0;
+  /// How long a write took: nothing on the bus may make the loop's writes wait.
+  int64_t write_p99_ns = 0;
+  int64_t write_max_ns = 0;
 };
 
 struct ReceivedTopic {
@@ -44,6 +47,9 @@ struct ReceivedTopic {
   uint64_t sessions = 0;
   uint64_t refused_other_writer = 0;
   uint64_t refused_sequence_jump = 0;
+  /// Samples of nodes the flow does not accept, and newest samples the node found invalid.
+  uint64_t refused_not_accepted = 0;
+  uint64_t refused_invalid = 0;
 };
 
 /// What the impairment did to one outgoing link of the node.
@@ -93,13 +99,16 @@ struct NodeReport {
 
   template <typename T>
   void add(const transport::Publication<T>& pub) {
-    published.push_back({pub.topic_name(), pub.sent(), pub.failed()});
+    published.push_back({pub.topic_name(), pub.sent(), pub.failed(), pub.write_time().percentile_ns(0.99),
+                         pub.write_time().max_ns()});
   }
 
   template <typename T>
   void add(const transport::Subscription<T>& sub) {
     received.push_back(received_from(sub.topic_name(), sub.stats(), sub.age(), sub.reader().deadline_missed(),
                                      sub.reader().liveliness_lost(), sub.session()));
+    received.back().refused_not_accepted = sub.refused_not_accepted();
+    received.back().refused_invalid = sub.rejected();
   }
 
   /// Adds the participant's impaired links.

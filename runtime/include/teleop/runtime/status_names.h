@@ -17,6 +17,8 @@ const char* state_name(msg::NodeState state);
 /// The state called `name` by state_name(); nullopt for any other text (e.g. "unknown").
 std::optional<msg::NodeState> state_from_name(std::string_view name);
 const char* fault_name(uint32_t fault_code);
+/// Why a flow refused a sample (msg::REFUSAL_*, FlowStatus.refusal).
+const char* refusal_name(uint32_t refusal);
 const char* role_name(msg::NodeRole role);
 
 }  // namespace teleop::runtime

@@ -2,12 +2,31 @@
 // Lock-free view of an endpoint's DDS status, updated by Fast DDS listener threads and read by
 // the control loop without taking any lock.
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 
+#include "teleop/common/fixed_text.h"
 #include "teleop/transport/stream_freshness.h"
 
 namespace teleop::transport {
+
+/// Whom a reader's flow follows and what it refused, by cause (index: msg::REFUSAL_*). Written
+/// by the node's loop (Subscription) and read on the same thread by its status publisher: plain
+/// fields, no other thread reads them.
+struct FlowAuthority {
+  /// The followed writer's node (SampleHeader.source); empty before the first sample.
+  FixedText<32> following;
+  /// The followed writer's GUID, in hex (WriterId::hex).
+  FixedText<33> following_writer;
+  /// Whether the followed writer's newest sample is in force (taken, and valid for the node).
+  bool in_force = false;
+  std::array<uint64_t, 5> refused{};
+  /// The last refusal: the writer's node, its cause (msg::REFUSAL_*) and the node's reason.
+  FixedText<32> refused_source;
+  uint32_t refusal = 0;
+  FixedText<32> refusal_detail;
+};
 
 struct EndpointStatus {
   /// Remote endpoints currently matched.
@@ -32,6 +51,8 @@ struct EndpointStatus {
   std::atomic<uint64_t> lost{0};
   /// One-way latency (source stamp to reception, CLOCK_REALTIME) smoothed over ~64 samples [ns].
   std::atomic<int64_t> latency_ns{0};
+  /// Who the flow follows, what it refused (readers taken through a Subscription).
+  FlowAuthority authority;
 };
 
 }  // namespace teleop::transport

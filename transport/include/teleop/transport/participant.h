@@ -8,12 +8,14 @@
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
+#include <cstring>
 #include <functional>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "teleop/common/node_event.h"
 #include "teleop/transport/discovery_observer.h"
 #include "teleop/transport/impairment/impairment_engine.h"
 #include "teleop/transport/participant_config.h"
@@ -63,19 +65,29 @@ class Participant {
     return Reader<T>(reader, status);
   }
 
-  /// A reader that calls `on_sample` on a Fast DDS thread for every sample received.
-  /// The callback must be thread-safe with respect to whatever it touches.
+  /// A reader that calls `on_sample` on a Fast DDS thread for every sample received, with the
+  /// DataWriter that wrote it. The callback must be thread-safe with respect to whatever it touches.
   template <typename T>
-  Reader<T> make_reader(const TopicSpec<T>& topic, std::function<void(const T&)> on_sample) {
+  Reader<T> make_reader(const TopicSpec<T>& topic, std::function<void(const T&, const WriterId&)> on_sample) {
     auto sample = std::make_shared<T>();
     auto take = [sample, cb = std::move(on_sample)](eprosima::fastdds::dds::DataReader* r) {
       eprosima::fastdds::dds::SampleInfo info;
+      WriterId writer;
       while (r->take_next_sample(sample.get(), &info) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
-        if (info.valid_data) cb(*sample);
+        if (!info.valid_data) continue;
+        std::memcpy(writer.bytes.data(), info.publication_handle.value, writer.bytes.size());
+        cb(*sample, writer);
       }
     };
     auto [reader, status] = create_reader(topic.name, register_type<T>(), topic.qos, std::move(take), sample);
     return Reader<T>(reader, status);
+  }
+
+  /// The same without the writer.
+  template <typename T>
+  Reader<T> make_reader(const TopicSpec<T>& topic, std::function<void(const T&)> on_sample) {
+    return make_reader(topic, std::function<void(const T&, const WriterId&)>(
+                                  [cb = std::move(on_sample)](const T& s, const WriterId&) { cb(s); }));
   }
 
   /// Tools: a reader of `topic` that hands every sample over as its serialized bytes, on a Fast
@@ -98,6 +110,9 @@ class Participant {
   /// The impairment of outgoing traffic; null when none is configured.
   const impairment::ImpairmentEngine* impairment() const { return impairment_.get(); }
   eprosima::fastdds::dds::DomainParticipant* dds() { return participant_; }
+  /// What the node's loop saw happen (writers followed and refused, state changes), on its way
+  /// to the node's log. The loop's thread produces, the node's event log consumes.
+  NodeEventQueue& events() { return *events_; }
 
  private:
   struct WriterListener;
@@ -122,6 +137,7 @@ class Participant {
       std::shared_ptr<void> keep_alive);
 
   ParticipantConfig config_;
+  std::unique_ptr<NodeEventQueue> events_ = std::make_unique<NodeEventQueue>();
   EndpointQos endpoint_qos_;
   std::string qos_profiles_source_;
   std::shared_ptr<impairment::ImpairmentEngine> impairment_;

@@ -45,6 +45,9 @@ struct ParticipantConfig {
   int domain_id = 0;
   /// Participant name shown in discovery tools.
   std::string name = "teleop";
+  /// A node's participant: another participant of the same name on the domain (two setups on one
+  /// domain, a node started twice) is warned about when it appears.
+  bool warn_same_name = false;
   /// Network transport; needed for anything that leaves this host.
   bool udpv4 = true;
   /// Shared-memory transport between processes on one host: lower latency, but Fast DDS 2.9

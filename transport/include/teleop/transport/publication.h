@@ -6,6 +6,7 @@
 #include <string>
 
 #include "teleop/common/clock.h"
+#include "teleop/common/histogram.h"
 #include "teleop/transport/participant.h"
 
 namespace teleop::transport {
@@ -40,7 +41,12 @@ class Publication {
   const std::string& topic_name() const { return topic_name_; }
   uint64_t sent() const { return sent_; }
   uint64_t failed() const { return failed_; }
+  /// How long each write took (the send of a best-effort stream included): a reader or a
+  /// discovery storm that made a write wait shows here.
+  const DurationHistogram& write_time() const { return write_time_; }
   int32_t matched() const { return writer_.matched(); }
+  /// The writer's GUID (what a reader's FlowStatus.following_writer names when it follows us).
+  WriterId writer_id() const { return writer_.id(); }
 
  private:
   // stamps the header's times (not its sequence number) and sends; a refusal is counted
@@ -48,7 +54,9 @@ class Publication {
     auto& header = sample_.header();
     header.stamp_ns(system_now_ns());
     header.stamp_mono_ns(monotonic_now_ns());
-    if (writer_.write(sample_)) return true;
+    const bool written = writer_.write(sample_);
+    write_time_.record(monotonic_now_ns() - header.stamp_mono_ns());
+    if (written) return true;
     ++failed_;
     return false;
   }
@@ -58,6 +66,7 @@ class Publication {
   T sample_;
   uint64_t sent_ = 0;
   uint64_t failed_ = 0;
+  DurationHistogram write_time_;
 };
 
 }  // namespace teleop::transport

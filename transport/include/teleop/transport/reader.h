@@ -84,6 +84,10 @@ class Reader {
   }
   bool valid() const { return reader_ != nullptr; }
 
+  /// Whom the flow follows and what it refused (Subscription). The loop's thread only.
+  FlowAuthority& authority() { return status_->authority; }
+  const FlowAuthority& authority() const { return status_->authority; }
+
   /// Whether the node needs a writer on this flow (EndpointStatus::awaited). Setup time.
   void set_awaited(bool awaited) { status_->awaited.store(awaited, std::memory_order_relaxed); }
 

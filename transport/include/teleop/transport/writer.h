@@ -3,6 +3,9 @@
 
 #include <fastdds/dds/publisher/DataWriter.hpp>
 
+#include <cstring>
+
+#include "teleop/common/stream_session.h"
 #include "teleop/transport/endpoint_status.h"
 
 namespace teleop::transport {
@@ -32,6 +35,14 @@ class Writer {
   int32_t matched() const { return status_->matched.load(std::memory_order_relaxed); }
   uint64_t deadline_missed() const { return status_->deadline_missed.load(std::memory_order_relaxed); }
   bool valid() const { return writer_ != nullptr; }
+  /// The writer's GUID, as its readers know it (Reader::take_next's WriterId).
+  WriterId id() const {
+    WriterId id;
+    const auto guid = writer_->guid();
+    std::memcpy(id.bytes.data(), guid.guidPrefix.value, 12);
+    std::memcpy(id.bytes.data() + 12, guid.entityId.value, 4);
+    return id;
+  }
 
  private:
   eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
