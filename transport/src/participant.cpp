@@ -223,12 +223,14 @@ std::string Participant::register_type_support(dds::TypeSupport type) {
   // renamed before registering, so that the type's own name and the announced one agree
   const std::string name = dds_type_name(config_.naming, type.get_type_name());
   if (name != type.get_type_name()) type->setName(name.c_str());
-  // Discovery announces the type information (the types' hashes) but not the type objects
-  // themselves: Fast DDS 2.9 builds a dynamic type from an announced type object of a type it does
-  // not know, and crashes on a sequence of a struct (eProsima/Fast-DDS#2184); the discovery server
-  // (fast-discovery-server 2.9) did, at our first writer (docs/transport.md, "Type objects").
+  // Discovery announces neither the type objects nor the type information (docs/transport.md,
+  // "Type objects"). Fast DDS 2.9 builds a dynamic type from an announced type object of a type it
+  // does not know and crashes on a sequence of a struct (eProsima/Fast-DDS#2184): the discovery
+  // server did, at our first writer. And it writes the type information (PID 0x75) as an
+  // encapsulation header and plain CDR, not as XTypes 1.3's XCDR2: Cyclone DDS 0.10 (rmw_cyclonedds)
+  // rejects it and drops the endpoint, so no Cyclone reader or writer would ever match ours.
   type->auto_fill_type_object(false);
-  type->auto_fill_type_information(true);
+  type->auto_fill_type_information(false);
   if (participant_->find_type(name).empty()) {
     if (type.register_type(participant_) != eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
       throw std::runtime_error("DDS refused to register type " + name);

@@ -33,10 +33,10 @@ TELEOP_PUBSUB_TYPE(ObjectPose)
 #undef TELEOP_PUBSUB_TYPE
 
 /// Registers the XTypes type objects of every teleop type with Fast DDS, once per process (the
-/// generated registration is guarded: idl/register_types_once.cmake). Writers and readers created
-/// afterwards announce their type in discovery, so that dynamic-type tools can read the samples.
-/// A sample's constructor registers its file's types too, but a participant may create endpoints
-/// before any sample exists. Setup time.
+/// generated registration is guarded: idl/register_types_once.cmake), so that dynamic types can be
+/// built from them in this process. Discovery announces none of them, nor the type information
+/// (docs/transport.md, "Type objects"). A sample's constructor registers its file's types too, but
+/// a participant may create endpoints before any sample exists. Setup time.
 void register_type_objects();
 
 }  // namespace teleop::transport
