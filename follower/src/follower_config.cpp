@@ -59,6 +59,7 @@ SafetyReflexConfig read_reflex(const ConfigNode& s, size_t n) {
   r.torque_nm = read_vector3(c, "torque_nm", Range{0.1, 1e4}, r.torque_nm);
   r.hold_stiffness_nm_per_rad = c.get_double("hold_stiffness_nm_per_rad", Range{0, 1e4}, r.hold_stiffness_nm_per_rad);
   r.hold_damping_nms_per_rad = c.get_double("hold_damping_nms_per_rad", Range{0, 1e3}, r.hold_damping_nms_per_rad);
+  r.brake_share_per_cycle = c.get_double("brake_share_per_cycle", Range{0, 0.5}, r.brake_share_per_cycle);
   return r;
 }
 

@@ -59,7 +59,8 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<robot::
                   context.node.name),
       reflex_(config.reflex),
       rejoin_(config.joints, config.rejoin_speed_radps, 1.0 / context.node.rate_hz),
-      stall_watch_(static_cast<int64_t>(config.command_timeout_s * 1e9)) {
+      stall_watch_(static_cast<int64_t>(config.command_timeout_s * 1e9)),
+      cycle_s_(1.0 / context.node.rate_hz) {
   if (hardware_->joints() != config.joints) {
     throw std::runtime_error("follower.joints is " + std::to_string(config.joints) + " but the robot (" +
                              hardware_->name() + ") has " + std::to_string(hardware_->joints()) + " joints");
@@ -196,6 +197,13 @@ void FollowerNode::run_reflex() {
   state_ = msg::STATE_SAFE_HOLD;
   const SafetyReflexConfig& r = reflex_.config();
   hold_current_pose(reflex_hold_, r.hold_stiffness_nm_per_rad, r.hold_damping_nms_per_rad);
+  // a contact is yielded to; a joint too fast is braked to a stop, each as hard as it stays stable
+  if (reflex_.last_cause() == ReflexCause::kJointVelocity) {
+    for (size_t i = 0; i < config_.joints; ++i) {
+      const auto k = static_cast<Eigen::Index>(i);
+      reflex_hold_.damping[i] = std::max(r.hold_damping_nms_per_rad, r.brake_share_per_cycle * control_.mass()(k, k) / cycle_s_);
+    }
+  }
   if (passive_) passive_->reset();
 }
 
@@ -216,8 +224,9 @@ void FollowerNode::command_torque(const ValidCommand& command) {
   const control::JointVector& tau = control_.compute(arm_, command);
   const bool subtract_gravity = hardware_->compensates_gravity();
   for (size_t i = 0; i < config_.joints; ++i) total_nm_[i] = tau[static_cast<Eigen::Index>(i)];
-  // saturation and rate limit act on what the drives produce: the total torque
-  limiter_.apply(total_nm_);
+  // saturation and rate limit act on what the drives produce: the total torque; a latched
+  // reflex brakes or yields at once, unlimited in rate
+  limiter_.apply(total_nm_, !reflex_.latched());
   torque_ratio_ = 0.0;
   for (size_t i = 0; i < config_.joints; ++i) {
     torque_ratio_ = std::max(torque_ratio_, std::abs(total_nm_[i]) / validator_.limits().max_torque_nm[i]);

@@ -8,10 +8,10 @@ namespace teleop::follower {
 TorqueLimiter::TorqueLimiter(size_t joints, const JointVector& max_torque_nm, double max_rate_nm_per_s, double cycle_s)
     : joints_(joints), max_torque_(max_torque_nm), max_step_(max_rate_nm_per_s > 0 ? max_rate_nm_per_s * cycle_s : 0.0) {}
 
-void TorqueLimiter::apply(JointVector& tau) {
+void TorqueLimiter::apply(JointVector& tau, bool rate_limit) {
   for (size_t i = 0; i < joints_; ++i) {
     double t = tau[i];
-    if (max_step_ > 0 && started_) {
+    if (rate_limit && max_step_ > 0 && started_) {
       const double limited = std::clamp(t, last_[i] - max_step_, last_[i] + max_step_);
       if (limited != t) ++rate_limited_;
       t = limited;

@@ -1,5 +1,7 @@
 #include "teleop/runtime/node_config.h"
 
+#include <algorithm>
+
 namespace teleop::runtime {
 
 NodeConfig parse_node_config(const ConfigNode& section, const std::string& default_name) {
@@ -16,6 +18,12 @@ NodeConfig parse_node_config(const ConfigNode& section, const std::string& defau
                     : mode == "optional" ? RealtimeMode::kOptional
                                          : RealtimeMode::kOff;
   c.realtime.priority = static_cast<int>(section.get_int("realtime_priority", Range{1, 99}, 80));
+  // the middleware's threads: real-time below the loop (0: SCHED_OTHER)
+  c.realtime.dds_priority =
+      static_cast<int>(section.get_int("dds_priority", Range{0, 98}, std::max(0, c.realtime.priority - 10)));
+  if (c.realtime.dds_priority >= c.realtime.priority) {
+    throw section.error("dds_priority", "must be below realtime_priority: nothing may run before the loop");
+  }
   c.probes = section.get_string_list("probes");
   return c;
 }

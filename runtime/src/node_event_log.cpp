@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include "teleop/runtime/command_authority.h"
+#include "teleop/runtime/realtime.h"
 #include "teleop/runtime/status_names.h"
 
 namespace teleop::runtime {
@@ -146,6 +147,7 @@ void NodeEventLog::drain() {
 }
 
 void NodeEventLog::run() {
+  name_own_thread("events");
   while (!stop_.load()) {
     drain();
     std::this_thread::sleep_for(std::chrono::milliseconds(5));

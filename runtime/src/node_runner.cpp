@@ -196,10 +196,12 @@ int run(const CommandLine& cli, const NodeDescription& description) {
       if (node.realtime.mode == RealtimeMode::kRequired) throw std::runtime_error("real-time setup: " + problem);
       spdlog::warn("{}: running without real-time scheduling: {}", node.name, problem);
     } else if (node.realtime.mode != RealtimeMode::kOff) {
-      const ThreadCensus census = keep_other_threads_below();
-      spdlog::info("{}: the loop at SCHED_FIFO {}; its {} other threads (DDS, log, trace) at SCHED_OTHER below it{}",
-                   node.name, node.realtime.priority, census.threads,
-                   census.demoted > 0 ? fmt::format(" ({} put back from a real-time policy)", census.demoted) : "");
+      const ThreadCensus c = place_other_threads(node.realtime);
+      spdlog::info("{}: the loop at SCHED_FIFO {}; {} middleware threads at {}, {} of its own at SCHED_OTHER{}", node.name,
+                   node.realtime.priority, c.middleware,
+                   node.realtime.dds_priority > 0 ? fmt::format("SCHED_FIFO {}", node.realtime.dds_priority)
+                                                  : std::string("SCHED_OTHER"),
+                   c.own, c.refused > 0 ? fmt::format(" ({} threads the kernel refused to move)", c.refused) : "");
     }
     started_ns = monotonic_now_ns();
     run_loop(node, *logic, status, pacer, trace.get(), state_watch);

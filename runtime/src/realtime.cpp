@@ -7,8 +7,10 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <string>
 
 namespace teleop::runtime {
 
@@ -27,7 +29,31 @@ std::string apply_realtime(const RealtimeConfig& config) {
   return {};
 }
 
-ThreadCensus keep_other_threads_below() {
+namespace {
+
+// the thread's name, as the kernel keeps it
+std::string name_of(pid_t tid) {
+  char path[64];
+  std::snprintf(path, sizeof(path), "/proc/self/task/%d/comm", static_cast<int>(tid));
+  FILE* f = std::fopen(path, "r");
+  if (f == nullptr) return {};
+  char name[32] = {};
+  const bool read = std::fgets(name, sizeof(name), f) != nullptr;
+  std::fclose(f);
+  std::string n = read ? name : "";
+  if (!n.empty() && n.back() == '\n') n.pop_back();
+  return n;
+}
+
+}  // namespace
+
+void name_own_thread(const char* what) {
+  char name[16];
+  std::snprintf(name, sizeof(name), "teleop-%s", what);
+  pthread_setname_np(pthread_self(), name);
+}
+
+ThreadCensus place_other_threads(const RealtimeConfig& config) {
   ThreadCensus census;
   const pid_t self = gettid();
   DIR* tasks = opendir("/proc/self/task");
@@ -35,12 +61,18 @@ ThreadCensus keep_other_threads_below() {
   while (const dirent* entry = readdir(tasks)) {
     const pid_t tid = static_cast<pid_t>(std::atoi(entry->d_name));
     if (tid <= 0 || tid == self) continue;
-    ++census.threads;
-    const int policy = sched_getscheduler(tid);
-    if (policy != SCHED_FIFO && policy != SCHED_RR) continue;
-    ++census.realtime;
-    sched_param normal{};
-    if (sched_setscheduler(tid, SCHED_OTHER, &normal) == 0) ++census.demoted;
+    const bool own = name_of(tid).rfind("teleop-", 0) == 0;
+    sched_param param{};
+    int policy = SCHED_OTHER;
+    if (!own && config.dds_priority > 0) {
+      policy = SCHED_FIFO;
+      param.sched_priority = config.dds_priority;
+    }
+    if (sched_setscheduler(tid, policy, &param) != 0) {
+      ++census.refused;
+    } else {
+      ++(own ? census.own : census.middleware);
+    }
   }
   closedir(tasks);
   return census;

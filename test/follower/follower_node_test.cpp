@@ -143,14 +143,20 @@ TEST_F(FollowerNodeTest, HoldsItsPoseWhenCommandsStopAndResumesWhenTheyReturn) {
 // the loop stopped for longer than the command timeout (a stopped or starved process): the
 // backlog's newest command is far from where the arm is, and is joined, not stepped to
 TEST_F(FollowerNodeTest, AStallOfItsOwnLoopIsAHoldAndTheNewestCommandIsJoinedNotSteppedTo) {
-  for (int i = 0; i < 500; ++i) step(0.0);
+  // the loop's deadlines are the test's (1 ms apart, then a 200 ms gap): a loaded test machine
+  // that stops this thread adds no stall of its own
+  int64_t deadline = monotonic_now_ns();
+  const auto cycle_at = [&](int64_t advance_ns, bool send, double offset) {
+    if (send) leader->command_offset(offset);
+    std::this_thread::sleep_for(std::chrono::microseconds(500));
+    deadline += advance_ns;
+    node->cycle(CycleTick{harness.index++, deadline, deadline});
+  };
+  for (int i = 0; i < 500; ++i) cycle_at(1'000'000, true, 0.0);
   ASSERT_EQ(node->state(), msg::STATE_RUNNING);
   const robot::ArmState before = node->arm();
-  // while the loop stood still, the leader moved on by 0.2 rad on every joint but the shoulder
-  leader->command_offset(0.2);
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
-  harness.index += 200;
-  node->cycle(harness.tick());
+  // while the loop stood still for 200 ms, the leader moved on by 0.2 rad on every joint but the shoulder
+  cycle_at(200'000'000, true, 0.2);
   EXPECT_EQ(node->state(), msg::STATE_SAFE_HOLD) << "a stall is a hold";
   EXPECT_TRUE(has_fault(msg::FAULT_LOOP_OVERRUN));
   EXPECT_EQ(counter("stall_holds"), 1.0);
@@ -159,7 +165,7 @@ TEST_F(FollowerNodeTest, AStallOfItsOwnLoopIsAHoldAndTheNewestCommandIsJoinedNot
   double largest_step = 0.0;
   robot::ArmState last = node->arm();
   for (int i = 0; i < 100; ++i) {
-    step(0.2);
+    cycle_at(1'000'000, true, 0.2);
     for (size_t j = 0; j < kJoints; ++j) largest_step = std::max(largest_step, std::abs(node->arm().q_rad[j] - last.q_rad[j]));
     last = node->arm();
   }

@@ -121,7 +121,9 @@ TEST(ReflexProcess, AHugeGainCommandIntoTheWallStopsBelowTheForceThresholdPlusTh
   const int domain = unique_domain();
   RunningProcess follower({bin("teleop_follower"), "--config", source("config/nodes/follower.yaml"), "--domain",
                            std::to_string(domain), "--report", dir + "/follower.yaml", "--trace", dir + "/follower.csv"});
-  ASSERT_TRUE(follower.wait_for_output("starting", 20s)) << follower.output();
+  // its loop runs (the first state it logs), not only its process: a press that started while the
+  // follower still loaded its model would be joined from further into the wall
+  ASSERT_TRUE(follower.wait_for_output("follower: starting\n", 20s)) << follower.output();
   PressingOperator op(domain);
   // the hostile command: every gain far above the limits (clamped to 5000 Nm/rad); through the
   // torque rate limit that rings, and the speed reflex stops the arm before it reaches the wall

@@ -124,7 +124,9 @@ class SecurityNetns : public ::testing::Test {
   std::string run_probe_beside_follower(const std::string& role, const std::string& identity) {
     nodes_->start("follower", kFollowerHost, secure(kFollowerHost, "follower"), kRunS + 1);
     EXPECT_TRUE(nodes_->process("follower").wait_for_output("starting", std::chrono::seconds(20))) << nodes_->outputs();
-    const std::string config = nodes_->write_config(role, "probe", secure(kProbeHost, identity));
+    // it holds `identity`'s certificate and speaks as that node (the follower also checks names)
+    const std::string config = nodes_->write_config(role, "probe", secure(kProbeHost, identity),
+                                                    [&](YAML::Node& root) { root["node"]["name"] = identity; });
     nodes_->start_program("probe", kProbeHost,
                           {bin("teleop_topic_probe"), "--config", config, "--domain", std::to_string(nodes_->domain()),
                            "--duration", std::to_string(kRunS - 1)});

@@ -42,9 +42,12 @@ void start_storm(NetnsNodes& nodes, const StormOptions& options) {
 // the storm's programs end by themselves; the nodes are stopped together
 std::string stop_all(NetnsNodes& nodes, const StormOptions& options) {
   if (options.storm) {
+    // a reader that found no writer within its 2 s (a starved host discovers slowly) ends with 1:
+    // it added to the storm all the same, and describe() counts the readers that received
     for (int i = 0; i < options.readers; ++i) {
       const std::string name = "reader_" + std::to_string(i);
-      if (nodes.wait_exit(name, std::chrono::seconds(60)) != 0) return name + " did not end cleanly";
+      const auto status = nodes.wait_exit(name, std::chrono::seconds(60));
+      if (!status || (*status != 0 && *status != 1)) return name + " did not end cleanly";
     }
     if (nodes.wait_exit("churn", std::chrono::seconds(60)) != 0) return "the churn did not end cleanly";
   }

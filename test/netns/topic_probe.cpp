@@ -19,9 +19,11 @@ using namespace teleop;
 
 constexpr auto kTopic = transport::topics::kLeaderCommand;
 
-std::optional<transport::Publication<msg::JointCommand>> try_publication(transport::Participant& participant) {
+// a program holding a node's identity speaks as that node (its node.name, which a follower checks)
+std::optional<transport::Publication<msg::JointCommand>> try_publication(transport::Participant& participant,
+                                                                       const std::string& node_name) {
   try {
-    return std::optional<transport::Publication<msg::JointCommand>>(std::in_place, participant, kTopic, "probe");
+    return std::optional<transport::Publication<msg::JointCommand>>(std::in_place, participant, kTopic, node_name);
   } catch (const std::runtime_error& e) {
     std::printf("publish %s: refused (%s)\n", kTopic.name, e.what());
     return std::nullopt;
@@ -42,7 +44,7 @@ int run(const std::string& config_path, int domain, double duration_s) {
   transport::ParticipantConfig config = transport::parse_participant_config(root.child("transport"), "probe");
   config.domain_id = domain;
   transport::Participant participant(config);
-  auto publication = try_publication(participant);
+  auto publication = try_publication(participant, root.child("node").get_string("name", "probe"));
   auto reader = try_reader(participant);
   msg::JointCommand received;
   uint64_t received_count = 0;

@@ -52,6 +52,8 @@ class ArmControl {
 
   /// g(q) at the state of the last compute()/estimate().
   const control::JointVector& gravity() const { return dynamics_.gravity(); }
+  /// The arm's joint-space inertia at the last estimate.
+  const control::JointMatrix& mass() const { return dynamics_.mass(); }
   /// The external joint torque chosen by `published_estimate`, and both estimators' own.
   const control::JointVector& external_torque() const { return *published_; }
   const control::JointVector& observer_torque() const { return observer_.external_torque(); }

@@ -109,6 +109,7 @@ class FollowerNode final : public runtime::NodeLogic {
   // why the robot holds (msg::FAULT_*), while it holds
   uint32_t hold_cause_ = msg::FAULT_STALE_INPUT;
   StallWatch stall_watch_;
+  double cycle_s_;
   uint64_t liveliness_trips_ = 0;
   double watchdog_latency_max_s_ = 0.0;
   uint64_t hardware_faults_ = 0;

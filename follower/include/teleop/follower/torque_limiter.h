@@ -15,8 +15,10 @@ class TorqueLimiter {
   /// `max_rate_nm_per_s` infinite (or <= 0): no rate limit.
   TorqueLimiter(size_t joints, const JointVector& max_torque_nm, double max_rate_nm_per_s, double cycle_s);
 
-  /// Limits `tau` in place (total link-side torque). Real-time safe.
-  void apply(JointVector& tau);
+  /// Limits `tau` in place (total link-side torque). Real-time safe. `rate_limit` false: only
+  /// the saturation (a latched reflex brakes at once: a real drive would refuse such a step and
+  /// stop the arm itself, which is the same outcome; this arm has only us to stop it).
+  void apply(JointVector& tau, bool rate_limit = true);
   /// The next apply() starts from `tau` (e.g. the torque the robot holds at start).
   void reset(const JointVector& tau) {
     last_ = tau;

@@ -14,6 +14,10 @@ enum class RealtimeMode {
 struct RealtimeConfig {
   RealtimeMode mode = RealtimeMode::kOff;
   int priority = 80;
+  /// SCHED_FIFO priority of the middleware's threads (receive, events, discovery), below the
+  /// loop's; 0: SCHED_OTHER. Real-time, so that no ordinary process on the host (a storm of
+  /// readers, a build) starves the reception of commands or holds a lock the loop waits for.
+  int dds_priority = 70;
 };
 
 /// Applies the settings to the calling thread (call from the loop thread, after the DDS threads
@@ -21,19 +25,23 @@ struct RealtimeConfig {
 /// failed. Setup time only.
 std::string apply_realtime(const RealtimeConfig& config);
 
-/// The node's other threads (Fast DDS's receive, event and discovery threads, the node's log and
-/// trace writers) as the scheduler sees them.
+/// The node's other threads as the scheduler sees them after place_other_threads().
 struct ThreadCensus {
-  int threads = 0;    ///< besides the calling (loop) thread
-  int realtime = 0;   ///< of them, with a real-time policy (SCHED_FIFO or SCHED_RR)
-  int demoted = 0;    ///< of those, put back to SCHED_OTHER by keep_other_threads_below()
+  int middleware = 0;  ///< Fast DDS's threads (unnamed), now at the middleware's priority
+  int own = 0;         ///< the node's helper threads (named "teleop-..."), at SCHED_OTHER
+  int refused = 0;     ///< threads the kernel refused to move
 };
 
 /// Fast DDS 2.9 has no thread-settings API: its threads are created with the participant and
-/// inherit the creating thread's scheduling. The loop raises only itself, after they exist, so
-/// they stay at SCHED_OTHER, below it; this checks that for every thread of the process (from
-/// /proc/self/task) and puts any other real-time thread back to SCHED_OTHER, so that nothing on
-/// the bus (discovery storms, slow readers) can run before the loop. Not for the loop itself.
-ThreadCensus keep_other_threads_below();
+/// inherit the creating thread's scheduling, and it does not name them. The loop raises only
+/// itself, after they exist; this then puts every other thread of the process (/proc/self/task)
+/// in its place: the node's own helpers (logs, traces; named "teleop-...") at SCHED_OTHER, the
+/// rest (Fast DDS's) at SCHED_FIFO `config.dds_priority` (SCHED_OTHER for 0), below the loop.
+/// Call from the loop thread after apply_realtime(). Setup time.
+ThreadCensus place_other_threads(const RealtimeConfig& config);
+
+/// Names the calling thread "teleop-<what>" (at most 15 characters), which marks it as one of
+/// the node's own helpers for place_other_threads().
+void name_own_thread(const char* what);
 
 }  // namespace teleop::runtime
