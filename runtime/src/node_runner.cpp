@@ -203,6 +203,8 @@ int run(const CommandLine& cli, const NodeDescription& description) {
                                                   : std::string("SCHED_OTHER"),
                    c.own, c.refused > 0 ? fmt::format(" ({} threads the kernel refused to move)", c.refused) : "");
     }
+    // every endpoint exists now: announce them a few times over, for peers behind a lossy link
+    participant.boost_discovery();
     started_ns = monotonic_now_ns();
     run_loop(node, *logic, status, pacer, trace.get(), state_watch);
     if (trace) trace->finish();

@@ -1,13 +1,14 @@
 // One operator in command (issue 28), with the nodes as processes: a second leader on the domain
 // never takes the robot over, not even across stalls of the follower, and is told that it is not
-// in command; a follower bound to its leader refuses other nodes outright and still follows its
-// leader again after a restart; a follower stopped for 1.5 s while pressing on the wall rejoins the
+// in command; a follower bound to its leader refuses other nodes outright, across stalls too, and
+// still follows its leader again after a restart (authority is not "never hand over"); a follower stopped for 1.5 s while pressing on the wall rejoins the
 // commands from where it held instead of stepping to them.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <csignal>
 #include <string>
 #include <thread>
@@ -100,6 +101,10 @@ TEST(CommandAuthority, ASecondLeaderNeverTakesOverThroughFollowerStallsAndIsTold
   EXPECT_GT(commands.refused_other_writer, 10'000u) << "the rogue's samples arrived all along and were refused";
   EXPECT_EQ(commands.refused_invalid, 0u);
   const experiment::Trace t = site.trace("follower");
+  std::printf("rogue through 5 stalls: %.0f session(s), %.0f stall holds, %llu rogue samples refused, |q_0| max %.3f rad "
+              "(rogue's target %.1f)\n",
+              counter(f, "command_sessions"), counter(f, "stall_holds"),
+              static_cast<unsigned long long>(commands.refused_other_writer), max_abs(t.column("q_0")), kRogueJoint0Rad);
   EXPECT_EQ(*std::max_element(t.column("cmd_session").begin(), t.column("cmd_session").end()), 1.0);
   EXPECT_LT(max_abs(t.column("q_0")), kRogueJoint0Rad / 3) << "joint 0 never went to the rogue's target";
   EXPECT_NE(follower.output().find("refuses samples of 'rogue': another writer is followed ('leader')"),
@@ -124,6 +129,11 @@ TEST(CommandAuthority, ABoundFollowerRefusesOtherNodesAndFollowsItsRestartedLead
   ASSERT_TRUE(follower.wait_for_output("follows 'leader' (session 1)", 30s)) << follower.output();
   RunningProcess rogue(site.args("leader", site.rogue(), "rogue"));
   ASSERT_TRUE(rogue.wait_for_output("not in command: not_accepted at 'follower'", 30s)) << rogue.output();
+  // the follower stalls (50 ms, five times) while both write
+  for (int i = 0; i < 5; ++i) {
+    follower.run_for(1000ms);
+    stall(follower, 50ms);
+  }
   follower.run_for(1000ms);
   // the legitimate leader dies and is started again: authority is not "never hand over"
   (void)leader->stop(SIGKILL, 10s);
@@ -138,7 +148,11 @@ TEST(CommandAuthority, ABoundFollowerRefusesOtherNodesAndFollowsItsRestartedLead
 
   const runtime::NodeReport f = site.report("follower");
   EXPECT_EQ(counter(f, "command_sessions"), 2.0) << "the leader, then the same leader restarted";
+  EXPECT_GE(counter(f, "stall_holds"), 5.0);
   const auto& commands = received(f, "teleop/leader/joint_command");
+  std::printf("bound follower: %.0f session(s), %.0f stall holds, %llu samples refused by name\n",
+              counter(f, "command_sessions"), counter(f, "stall_holds"),
+              static_cast<unsigned long long>(commands.refused_not_accepted));
   EXPECT_GT(commands.refused_not_accepted, 1000u) << "the rogue's samples were refused by name";
   EXPECT_LT(max_abs(site.trace("follower").column("q_0")), kRogueJoint0Rad / 3);
   EXPECT_EQ(counter(site.report("leader"), "in_command"), 1.0);

@@ -82,6 +82,10 @@ void DiscoveryListener::on_participant_discovery(eprosima::fastdds::dds::DomainP
       engine_->peers().add(name, locators);
     }
   }
+  if (info.status == ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT &&
+      has_new_participant_.load(std::memory_order_acquire)) {
+    new_participant_();
+  }
   if (!gone && !own_name_.empty() && name == own_name_ && p != nullptr && info.info.m_guid.guidPrefix != p->guid().guidPrefix &&
       info.status == ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT) {
     spdlog::warn("{}: another participant named '{}' joined domain {} from host {}: nodes of one name mix their "

@@ -4,6 +4,8 @@
 
 #include <fastdds/dds/domain/DomainParticipantListener.hpp>
 
+#include <atomic>
+#include <functional>
 #include <memory>
 
 #include "teleop/transport/discovery_observer.h"
@@ -23,6 +25,12 @@ class DiscoveryListener : public eprosima::fastdds::dds::DomainParticipantListen
 
   void on_participant_discovery(eprosima::fastdds::dds::DomainParticipant*,
                                 eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override;
+  /// Called (on Fast DDS's thread) whenever another participant appears; set once, before or
+  /// after the participant exists.
+  void on_new_participant(std::function<void()> callback) {
+    new_participant_ = std::move(callback);
+    has_new_participant_.store(true, std::memory_order_release);
+  }
   void on_publisher_discovery(eprosima::fastdds::dds::DomainParticipant*,
                               eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override;
   void on_subscriber_discovery(eprosima::fastdds::dds::DomainParticipant*,
@@ -38,6 +46,8 @@ class DiscoveryListener : public eprosima::fastdds::dds::DomainParticipantListen
   DiscoveryObserver* observer_;
   Naming naming_;
   std::string own_name_;
+  std::function<void()> new_participant_;
+  std::atomic<bool> has_new_participant_{false};
 };
 
 /// The property a participant announces its host name in.

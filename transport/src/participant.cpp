@@ -20,6 +20,7 @@
 #include <spdlog/spdlog.h>
 
 #include "teleop/common/clock.h"
+#include "discovery_booster.h"
 #include "discovery_listener.h"
 #include "impairment/impairing_transport.h"
 #include "qos_profile_loader.h"
@@ -174,10 +175,8 @@ Participant::Participant(const ParticipantConfig& config, DiscoveryObserver* obs
                  config.impairment.seed, config.impairment.exclude_discovery ? ", discovery unimpaired" : "");
     for (const auto& l : config.impairment.links) spdlog::info("{}: link to {}: profile {}", config.name, l.to, l.profile.name);
   }
-  if (impairment_ || observer || config.warn_same_name || config.security.enabled()) {
-    discovery_listener_ = std::make_unique<DiscoveryListener>(impairment_, observer, config.naming,
-                                                              config.warn_same_name ? config.name : std::string());
-  }
+  discovery_listener_ = std::make_unique<DiscoveryListener>(impairment_, observer, config.naming,
+                                                            config.warn_same_name ? config.name : std::string());
   if (config.security.enabled()) verify_security_files(config.security);
   register_type_objects();
   const QosProfileLoader profiles(config);
@@ -208,9 +207,14 @@ void Participant::create_entities(const dds::DomainParticipantQos& qos, const Qo
     throw std::runtime_error("DDS refused to create the publisher/subscriber of '" + config_.name + "'");
   }
   endpoint_qos_ = profiles.endpoint_qos(*publisher_, *subscriber_, qos);
+  discovery_booster_ = std::make_unique<DiscoveryBooster>(
+      *publisher_, *subscriber_, DiscoveryBoost{config_.discovery_boost_ns, config_.discovery_boost_period_ns});
+  discovery_listener_->on_new_participant([booster = discovery_booster_.get()] { booster->kick(); });
 }
 
 Participant::~Participant() {
+  // nothing re-announces the endpoints while they are deleted
+  discovery_booster_.reset();
   // the delay line sends through resources the participant owns: stop it first
   if (impairment_) impairment_->shutdown();
   if (participant_ == nullptr) return;
@@ -313,6 +317,8 @@ ParticipantId Participant::id() const {
   std::memcpy(id.data(), participant_->guid().guidPrefix.value, id.size());
   return id;
 }
+
+void Participant::boost_discovery() { discovery_booster_->arm_and_kick(); }
 
 std::vector<ReaderFlow> Participant::reader_flows() const {
   std::vector<ReaderFlow> flows;

@@ -124,6 +124,8 @@ void parse_qos(const ConfigNode& section, ParticipantConfig& c) {
   }
   const std::string naming = section.get_choice("naming", {"plain", "ros2"}, "plain");
   c.naming = naming == "ros2" ? Naming::kRos2 : Naming::kPlain;
+  // re-announcing the endpoints after a peer appears (0: never); every 100 ms meanwhile
+  c.discovery_boost_ns = section.get_int("discovery_boost_ms", Range{0, 60'000}, c.discovery_boost_ns / 1'000'000) * 1'000'000;
 }
 
 }  // namespace

@@ -32,6 +32,7 @@ namespace teleop::transport {
 /// Receives every sample of a reader on a Fast DDS thread (callback mode).
 using SampleCallback = std::function<void(const void* sample)>;
 
+class DiscoveryBooster;
 class DiscoveryListener;
 class QosProfileLoader;
 
@@ -96,6 +97,12 @@ class Participant {
   /// Tools: a writer of serialized samples of `type` on `topic`.
   RawWriter make_raw_writer(const std::string& topic, const SampleType& type, QosPreset qos);
 
+  /// Announces this participant's endpoints again for a while (ParticipantConfig::discovery_boost_ns),
+  /// and from now on whenever another participant appears. A node calls it once all its endpoints
+  /// exist; no endpoint may be created after (Fast DDS 2.9 asserts on one re-announced while being
+  /// made). Participants that never call it (tools) never re-announce.
+  void boost_discovery();
+
   /// Every reader created so far, in creation order. Setup time (allocates).
   std::vector<ReaderFlow> reader_flows() const;
 
@@ -142,6 +149,7 @@ class Participant {
   std::string qos_profiles_source_;
   std::shared_ptr<impairment::ImpairmentEngine> impairment_;
   std::unique_ptr<DiscoveryListener> discovery_listener_;
+  std::unique_ptr<DiscoveryBooster> discovery_booster_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;

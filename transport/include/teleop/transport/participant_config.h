@@ -48,6 +48,11 @@ struct ParticipantConfig {
   /// A node's participant: another participant of the same name on the domain (two setups on one
   /// domain, a node started twice) is warned about when it appears.
   bool warn_same_name = false;
+  /// After another participant appears, this participant's endpoints are announced again every
+  /// `discovery_boost_period_ns` for `discovery_boost_ns` (0: never): a lost endpoint announcement
+  /// is otherwise repaired only on Fast DDS's one-second heartbeat (discovery_booster.h).
+  int64_t discovery_boost_ns = 2'000'000'000;
+  int64_t discovery_boost_period_ns = 100'000'000;
   /// Network transport; needed for anything that leaves this host.
   bool udpv4 = true;
   /// Shared-memory transport between processes on one host: lower latency, but Fast DDS 2.9
