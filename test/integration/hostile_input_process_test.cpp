@@ -58,7 +58,8 @@ TEST(HostileConfig, AFifoAsTheConfigIsRefusedWithoutWaitingForAWriter) {
 }
 
 // the shipped follower config and, after it, a section of `entries` lines nobody reads: legal YAML
-// that takes seconds to parse (and would then be refused as unknown keys)
+// that takes seconds to parse (100 000 entries, 4.7 MB: about 4 s here), and would then be refused
+// as unknown keys
 std::string large_config(const std::string& dir, int entries) {
   std::string text = read_file(config_copy(dir, "follower.yaml", {}));
   text.reserve(text.size() + static_cast<size_t>(entries) * 48);
@@ -69,8 +70,16 @@ std::string large_config(const std::string& dir, int entries) {
   return path;
 }
 
+// the bound; a sanitizer build's process takes longer to tear down (its shadow memory:
+// 27-93 ms measured on this VM under load, against 7-13 ms in the default build)
+#ifdef TELEOP_SANITIZED
+constexpr double kParseExitBoundMs = 300.0;
+#else
+constexpr double kParseExitBoundMs = 100.0;
+#endif
+
 TEST(HostileConfig, SigtermWhileAConfigIsParsedEndsTheNodeAtOnce) {
-  const std::string config = large_config(make_temp_dir(), 300'000);
+  const std::string config = large_config(make_temp_dir(), 100'000);
   for (const int sig : {SIGTERM, SIGINT}) {
     SCOPED_TRACE(sig);
     RunningProcess p({bin("teleop_follower"), "--config", config, "--log-level", "debug"});
@@ -87,8 +96,8 @@ TEST(HostileConfig, SigtermWhileAConfigIsParsedEndsTheNodeAtOnce) {
     EXPECT_EQ(p.output().find("config error"), std::string::npos) << "the parse had ended before the signal";
     EXPECT_EQ(p.output().find("starting"), std::string::npos) << p.output();
     std::printf("follower: signal %d during the config's parse, exit %.1f ms after it\n", sig, ms);
-    // the bound (the handler exits at once; the rest is the kernel and this test's 2 ms polls)
-    EXPECT_LT(ms, 100.0);
+    // the handler exits at once; the rest is the kernel's teardown and this test's 2 ms polls
+    EXPECT_LT(ms, kParseExitBoundMs);
   }
 }
 

@@ -4,21 +4,12 @@
 #include <sys/resource.h>
 
 #include <csignal>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "test_helpers.h"
 
 namespace teleop::runtime {
 namespace {
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // the process may write files up to `bytes` while it lives (a disk that fills up at a known
 // byte); a write across the limit is cut short there, the next one refused (EFBIG)
@@ -62,7 +53,7 @@ TEST(TraceFile, CountsOnlyWholeRowsAndGoesOnWhereARefusedWriteStopped) {
     EXPECT_EQ(file.error(), "File too large");
     EXPECT_EQ(file.rows_written(), 4u);
     EXPECT_EQ(file.rows_pending(), 6u);
-    EXPECT_EQ(slurp(path).size(), 47u);
+    EXPECT_EQ(test::read_text(path).size(), 47u);
     limit.set(RLIM_INFINITY);
     EXPECT_TRUE(file.flush());
   }
@@ -70,7 +61,7 @@ TEST(TraceFile, CountsOnlyWholeRowsAndGoesOnWhereARefusedWriteStopped) {
   EXPECT_EQ(file.rows_pending(), 0u);
   std::string expected = "h\n";
   for (int i = 0; i < 10; ++i) expected += "row " + std::to_string(i) + ",abc\n";
-  EXPECT_EQ(slurp(path), expected);
+  EXPECT_EQ(test::read_text(path), expected);
 }
 
 TEST(TraceFile, WritesTheHeldRowsAndSaysWhereAFullDeviceStoppedThem) {
