@@ -65,10 +65,8 @@ bool TraceStream::write_complete_rows() {
 void TraceStream::log_outcome(bool ok) {
   const int64_t now_ns = monotonic_now_ns();
   if (!ok && !failing_) {
-    spdlog::error(
-        "trace {}: write failed ({}): {} rows written; the rows wait in memory and are lost once it overwrites "
-        "them",
-        file_.path(), file_.error(), file_.rows_written());
+    spdlog::error("trace {}: write failed ({}): {} rows in the file; the next wait in the ring, lost once it wraps",
+                  file_.path(), file_.error(), file_.rows_written());
     failure_logged_ns_ = now_ns;
   } else if (!ok && now_ns - failure_logged_ns_ >= kFailureLogPeriodNs) {
     spdlog::error("trace {}: writes still failing ({}): {} rows written, {} lost so far", file_.path(), file_.error(),
