@@ -4,6 +4,9 @@
 
 #include "teleop/bag/bag_error.h"
 #include "teleop/bag/bag_format.h"
+#include "teleop/common/config.h"
+#include "teleop/common/input_file.h"
+#include "teleop/common/strict_yaml.h"
 
 namespace teleop::bag {
 namespace {
@@ -34,9 +37,13 @@ void emit_files(YAML::Emitter& out, const BagSummary& s) {
 
 [[noreturn]] void fail(const std::string& path, const std::string& problem) { throw BagError(path + ": " + problem); }
 
+// a metadata file comes with a recording from anywhere: read like a configuration (a regular
+// file only, no alias bomb)
 YAML::Node load(const std::string& path) {
   try {
-    return YAML::LoadFile(path);
+    return parse_strict_yaml(read_input_file(path), path);
+  } catch (const ConfigError& e) {
+    throw BagError(e.what());
   } catch (const YAML::Exception& e) {
     fail(path, std::string("not readable as YAML (") + e.what() + ")");
   }

@@ -1,6 +1,8 @@
 #include "teleop/common/config.h"
 
 #include "teleop/common/did_you_mean.h"
+#include "teleop/common/input_file.h"
+#include "teleop/common/strict_yaml.h"
 
 #include <cmath>
 #include <filesystem>
@@ -54,72 +56,30 @@ std::string describe(const YAML::Node& node) {
   }
 }
 
-std::string line_of(const std::string& source, const YAML::Mark& mark) {
-  return mark.line >= 0 ? source + ":" + std::to_string(mark.line + 1) : source;
-}
-
-// yaml-cpp keeps every entry of a mapping, a repeated key too, and lookups find the first: a
-// second value would be silently ignored (and never range-checked), so a repeat is an error;
-// so is a key that is not a plain scalar (a list or mapping as a key), which no lookup can name
-void check_keys(const YAML::Node& node, const std::string& source, const std::string& path, int depth) {
-  // anchors can make a document a graph; real configuration files are a few levels deep
-  if (depth > 64) throw ConfigError(line_of(source, node.Mark()) + ": " + path + ": nested more than 64 levels deep");
-  if (node.IsSequence()) {
-    for (size_t i = 0; i < node.size(); ++i) check_keys(node[i], source, path + "[" + std::to_string(i) + "]", depth + 1);
-    return;
+// the parsed document, every rule of strict_yaml.h kept; a top level that is not a mapping has no keys to read
+YAML::Node parse_root(const std::string& text, const std::string& source) {
+  YAML::Node root;
+  try {
+    root = parse_strict_yaml(text, source);
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError(source + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(source + ": not readable as YAML: " + e.msg);
   }
-  if (!node.IsMap()) return;
-  std::map<std::string, int> first_line;
-  for (const auto& entry : node) {
-    if (!entry.first.IsScalar()) {
-      throw ConfigError(line_of(source, entry.first.Mark()) + ": " + (path.empty() ? "(top level)" : path) +
-                        ": a key must be a plain name, got " + describe(entry.first));
-    }
-    const std::string& key = entry.first.Scalar();
-    const std::string key_path = path.empty() ? key : path + "." + key;
-    const auto [it, fresh] = first_line.emplace(key, entry.first.Mark().line + 1);
-    if (!fresh) {
-      throw ConfigError(line_of(source, entry.first.Mark()) + ": " + key_path + ": duplicate key (first given on line " +
-                        std::to_string(it->second) + ")");
-    }
-    check_keys(entry.second, source, key_path, depth + 1);
-  }
-}
-
-// the checks every parsed document passes before anything reads it
-YAML::Node checked_root(const YAML::Node& root, const std::string& source) {
   if (!root.IsMap()) throw ConfigError(source + ": the top level must be a mapping of keys");
-  check_keys(root, source, "", 0);
   return root;
 }
 
 }  // namespace
 
 ConfigNode ConfigNode::load_file(const std::string& path) {
-  if (std::filesystem::is_directory(path)) throw ConfigError(path + ": is a folder, not a configuration file");
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw ConfigError(path + ": cannot open the file");
-  } catch (const YAML::ParserException& e) {
-    throw ConfigError(path + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
-  } catch (const YAML::Exception& e) {
-    throw ConfigError(path + ": cannot read the file: " + e.msg);
-  }
-  return ConfigNode(std::make_shared<FileState>(FileState{path, {}, {}}), checked_root(root, path), "");
+  // read first, as a regular file only: a FIFO or a device would block the parse or never end it
+  const std::string text = read_input_file(path);
+  return ConfigNode(std::make_shared<FileState>(FileState{path, {}, {}}), parse_root(text, path), "");
 }
 
 ConfigNode ConfigNode::load_string(const std::string& text, const std::string& source_name) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    throw ConfigError(source_name + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
-  } catch (const YAML::Exception& e) {
-    throw ConfigError(source_name + ": cannot read the text: " + e.msg);
-  }
-  return ConfigNode(std::make_shared<FileState>(FileState{source_name, {}, {}}), checked_root(root, source_name), "");
+  return ConfigNode(std::make_shared<FileState>(FileState{source_name, {}, {}}), parse_root(text, source_name), "");
 }
 
 void ConfigNode::apply_override(const std::string& spec) {
@@ -139,11 +99,10 @@ void ConfigNode::apply_override(const std::string& spec) {
   }
   YAML::Node value;
   try {
-    value = YAML::Load(spec.substr(eq + 1));
+    value = parse_strict_yaml(spec.substr(eq + 1), state_->file + " (--set " + spec + ")", key);
   } catch (const YAML::ParserException& e) {
     throw ConfigError(state_->file + ": --set " + spec + ": malformed YAML value: " + e.msg);
   }
-  check_keys(value, state_->file + " (--set " + spec + ")", key, 0);
   // walk (and where missing, create) the mappings down to the last segment; reset() re-seats the
   // handle, where operator= would overwrite the node it refers to
   YAML::Node mapping;
@@ -328,7 +287,12 @@ std::string ConfigNode::get_path(const std::string& key) const {
   const std::filesystem::path path =
       given.is_absolute() ? given : std::filesystem::path(state_->file).parent_path() / given;
   if (!std::filesystem::is_regular_file(path)) {
-    throw error_at(lookup(key), key, "no file " + path.lexically_normal().string());
+    const std::string name = path.lexically_normal().string();
+    // a FIFO or a device would block whoever opens it, or never end
+    if (std::filesystem::exists(path)) {
+      throw error_at(lookup(key), key, name + " is not a regular file (a folder, FIFO or device)");
+    }
+    throw error_at(lookup(key), key, "no file " + name);
   }
   return path.lexically_normal().string();
 }

@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "teleop/common/clock.h"
+#include "teleop/runtime/realtime.h"
 
 namespace teleop::runtime {
 
@@ -35,14 +36,15 @@ FlowWatch::FlowWatch(const transport::Participant& participant, std::string node
       thread_([this] { run(); }) {}
 
 FlowWatch::~FlowWatch() {
-  stop_.store(true);
+  stop_.request();
   thread_.join();
 }
 
 void FlowWatch::run() {
+  name_own_thread("flows");
   std::vector<int32_t> writers(flows_.size());
   std::vector<FlowEvent> events;
-  while (!stop_.load()) {
+  do {
     for (size_t i = 0; i < flows_.size(); ++i) {
       const transport::EndpointStatus& s = *flows_[i].status;
       // a flow the node does not need counts as served: nothing to wait for
@@ -51,8 +53,7 @@ void FlowWatch::run() {
     events.clear();
     tracker_.update(monotonic_now_ns(), writers, events);
     for (const FlowEvent& e : events) log(e);
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
+  } while (!stop_.wait_for(std::chrono::milliseconds(100)));
 }
 
 void FlowWatch::log(const FlowEvent& event) const {

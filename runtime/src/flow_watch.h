@@ -9,6 +9,7 @@
 #include <thread>
 #include <vector>
 
+#include "stop_request.h"
 #include "teleop/transport/participant.h"
 
 namespace teleop::runtime {
@@ -56,7 +57,7 @@ class FlowWatch {
   std::string node_name_;
   int domain_id_;
   FlowWaitTracker tracker_;
-  std::atomic<bool> stop_{false};
+  StopRequest stop_;
   std::thread thread_;
 };
 

@@ -2,6 +2,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <stdexcept>
 #include <type_traits>
@@ -227,9 +229,15 @@ void write_report(const NodeReport& report, const std::string& path) {
   out << YAML::EndMap;
   out << YAML::EndMap;
 
+  errno = 0;
   std::ofstream file(path);
   file << out.c_str() << "\n";
-  if (!file) throw std::runtime_error("cannot write report " + path);
+  // closed before the check: a full disk refuses the buffered text only when it is flushed
+  file.close();
+  if (!file) {
+    throw std::runtime_error("cannot write report " + path +
+                             (errno != 0 ? std::string(": ") + std::strerror(errno) : ""));
+  }
 }
 
 NodeReport read_report(const std::string& path) {

@@ -10,19 +10,21 @@
 #include <optional>
 #include <sstream>
 
-#include "teleop/common/clock.h"
-#include "teleop/common/data_paths.h"
-#include "teleop/common/version.h"
-#include "teleop/runtime/realtime.h"
-#include "teleop/runtime/shutdown_signal.h"
-#include "teleop/runtime/status_names.h"
 #include "flow_watch.h"
 #include "node_event_log.h"
 #include "status_publisher.h"
-#include "teleop/runtime/trace_recorder.h"
-#include "trace_stream.h"
-#include "teleop/transport/participant_config.h"
+#include "teleop/common/clock.h"
+#include "teleop/common/data_paths.h"
+#include "teleop/common/output_file.h"
+#include "teleop/common/version.h"
 #include "teleop/runtime/command_line_hint.h"
+#include "teleop/runtime/realtime.h"
+#include "teleop/runtime/shutdown_signal.h"
+#include "teleop/runtime/status_names.h"
+#include "teleop/runtime/trace_recorder.h"
+#include "teleop/transport/participant_config.h"
+#include "trace_file.h"
+#include "trace_stream.h"
 
 namespace teleop::runtime {
 namespace {
@@ -100,6 +102,7 @@ struct Setup {
 };
 
 Setup load_setup(const CommandLine& cli, const NodeDescription& description) {
+  spdlog::debug("reading the configuration {}", cli.config_path);
   ConfigNode root = ConfigNode::load_file(cli.config_path);
   for (const std::string& spec : cli.sets) root.apply_override(spec);
   Setup setup{parse_node_config(root.child("node"), description.role_name), {}, {}};
@@ -111,6 +114,10 @@ Setup load_setup(const CommandLine& cli, const NodeDescription& description) {
   if (cli.domain_id) setup.transport.domain_id = *cli.domain_id;
   apply_impair_overrides(cli, setup.transport);
   if (!cli.trace_path.empty()) trace_rows(cli, setup.node);
+  // where the results go, before the node joins the network: a path that cannot be written is an
+  // error now, not a result lost at the end
+  if (!cli.report_path.empty()) check_output_file(cli.report_path, "--report");
+  if (!cli.trace_path.empty()) check_output_file(cli.trace_path, "--trace");
   return setup;
 }
 
@@ -147,6 +154,34 @@ std::unique_ptr<TraceRecorder> make_trace_recorder(const CommandLine& cli, const
   return std::make_unique<TraceRecorder>(std::move(columns), rows);
 }
 
+// writes what the trace still holds (streamed: its last rows; else the whole CSV) and counts in the
+// report the rows in the file and those that never got there; false when a write failed (logged
+// when it happened: by the stream's writer, or here)
+bool finish_trace(const CommandLine& cli, const NodeConfig& node, const TraceRecorder& trace, TraceStream* stream,
+                  NodeReport& report) {
+  uint64_t written = 0;
+  bool ok = true;
+  if (stream != nullptr) {
+    ok = stream->stop();
+    written = stream->rows_written();
+  } else {
+    try {
+      const TraceFileResult result = write_held_rows(trace, cli.trace_path);
+      written = result.rows_written;
+      ok = result.error.empty();
+      if (!ok) spdlog::error("{}: trace {}: write failed ({})", node.name, cli.trace_path, result.error);
+    } catch (const std::runtime_error& e) {
+      spdlog::error("{}: {}", node.name, e.what());
+      ok = false;
+    }
+  }
+  const uint64_t dropped = trace.rows_complete() - written;
+  report.counters.emplace_back("trace_rows_written", static_cast<double>(written));
+  report.counters.emplace_back("trace_rows_dropped", static_cast<double>(dropped));
+  spdlog::info("{}: wrote {} trace rows ({} dropped) to {}", node.name, written, dropped, cli.trace_path);
+  return ok;
+}
+
 // the fixed-rate loop; `trace` (may be null) gets one row per cycle
 void run_loop(const NodeConfig& node, NodeLogic& logic, StatusPublisher& status, RatePacer& pacer,
               TraceRecorder* trace, StateWatch& state_watch) {
@@ -165,80 +200,95 @@ void run_loop(const NodeConfig& node, NodeLogic& logic, StatusPublisher& status,
   }
 }
 
+// the loop's thread at its real-time priority, the middleware's threads below it and the node's
+// own helpers ordinary; throws only when real time is required and refused
+void enter_realtime(const NodeConfig& node) {
+  if (const std::string problem = apply_realtime(node.realtime); !problem.empty()) {
+    if (node.realtime.mode == RealtimeMode::kRequired) throw std::runtime_error("real-time setup: " + problem);
+    spdlog::warn("{}: running without real-time scheduling: {}", node.name, problem);
+    return;
+  }
+  if (node.realtime.mode == RealtimeMode::kOff) return;
+  const ThreadCensus c = place_other_threads(node.realtime);
+  spdlog::info("{}: the loop at SCHED_FIFO {}; {} middleware threads at {}, {} of its own at SCHED_OTHER{}", node.name,
+               node.realtime.priority, c.middleware,
+               node.realtime.dds_priority > 0 ? fmt::format("SCHED_FIFO {}", node.realtime.dds_priority)
+                                              : std::string("SCHED_OTHER"),
+               c.own, c.refused > 0 ? fmt::format(" ({} threads the kernel refused to move)", c.refused) : "");
+}
+
+// what a run leaves once its participant is gone
+struct RunOutcome {
+  NodeReport report;
+  std::unique_ptr<TraceRecorder> trace;
+  std::unique_ptr<TraceStream> stream;
+};
+
+// the node on the network, from creating its participant to filling the report; a signal that came
+// while the participant was created ends it before the logic is built (the follower would take
+// 100 ms to build its model only to delete it)
+void run_on_network(const CommandLine& cli, const NodeDescription& description, const Setup& setup, RunOutcome& out) {
+  const NodeConfig& node = setup.node;
+  NodeReport& report = out.report;
+  report.name = node.name;
+  report.role = description.role_name;
+  report.rate_hz = node.rate_hz;
+  transport::Participant participant(setup.transport);
+  spdlog::info("{}: QoS profiles from {}, {} topic names", node.name, participant.qos_profiles_source(),
+               setup.transport.naming == transport::Naming::kRos2 ? "ROS 2" : "plain");
+  if (shutdown_requested()) {
+    report.final_state = state_name(msg::STATE_STARTING);
+    return;
+  }
+  NodeContext context{node, participant};
+  std::unique_ptr<NodeLogic> logic = setup.build(context);
+  out.trace = make_trace_recorder(cli, node, *logic);
+  if (out.trace && cli.trace_stream) out.stream = std::make_unique<TraceStream>(*out.trace, cli.trace_path);
+  StatusPublisher status(participant, node.name, description.role, node.rate_hz, node.status_rate_hz);
+  const FlowWatch flow_watch(participant, node.name, setup.transport.domain_id);
+  NodeEventLog event_log(participant.events(), node.name);
+  StateWatch state_watch(participant.events());
+  MonotonicClock clock;
+  RatePacer pacer(clock, node.period_ns(), node.max_catch_up_cycles);
+
+  enter_realtime(node);
+  // every endpoint exists now: announce them a few times over, for peers behind a lossy link
+  participant.boost_discovery();
+  const int64_t started_ns = monotonic_now_ns();
+  run_loop(node, *logic, status, pacer, out.trace.get(), state_watch);
+  if (out.trace) out.trace->finish();
+  // bounded, so that shutdown stays well inside 100 ms even with a dead status reader
+  status.publish_stopping(*logic, pacer.stats(), 50 * kNsPerMs);
+
+  report.final_state = state_name(logic->state());
+  report.run_time_s = static_cast<double>(monotonic_now_ns() - started_ns) * 1e-9;
+  report.add_loop(pacer.stats());
+  logic->fill_report(report);
+  report.add_links(participant);
+}  // the participant and all its entities are deleted here
+
 int run(const CommandLine& cli, const NodeDescription& description) {
-  Setup setup = load_setup(cli, description);
+  const Setup setup = load_setup(cli, description);
   const NodeConfig& node = setup.node;
   spdlog::info("{}: starting ({} Hz, domain {}, {}{}, discovery {}, security {})", node.name, node.rate_hz,
                setup.transport.domain_id, setup.transport.udpv4 ? "udpv4" : "", setup.transport.shm ? " shm" : "",
                transport::discovery_mode_name(setup.transport.discovery),
                setup.transport.security.enabled() ? "on" : "off");
-
-  NodeReport report;
-  std::unique_ptr<TraceRecorder> trace;
-  std::unique_ptr<TraceStream> stream;
-  int64_t started_ns = monotonic_now_ns();
-  {
-    transport::Participant participant(setup.transport);
-    spdlog::info("{}: QoS profiles from {}, {} topic names", node.name, participant.qos_profiles_source(),
-                 setup.transport.naming == transport::Naming::kRos2 ? "ROS 2" : "plain");
-    NodeContext context{node, participant};
-    std::unique_ptr<NodeLogic> logic = setup.build(context);
-    trace = make_trace_recorder(cli, node, *logic);
-    if (trace && cli.trace_stream) stream = std::make_unique<TraceStream>(*trace, cli.trace_path);
-    StatusPublisher status(participant, node.name, description.role, node.rate_hz, node.status_rate_hz);
-    const FlowWatch flow_watch(participant, node.name, setup.transport.domain_id);
-    NodeEventLog event_log(participant.events(), node.name);
-    StateWatch state_watch(participant.events());
-    MonotonicClock clock;
-    RatePacer pacer(clock, node.period_ns(), node.max_catch_up_cycles);
-
-    if (const std::string problem = apply_realtime(node.realtime); !problem.empty()) {
-      if (node.realtime.mode == RealtimeMode::kRequired) throw std::runtime_error("real-time setup: " + problem);
-      spdlog::warn("{}: running without real-time scheduling: {}", node.name, problem);
-    } else if (node.realtime.mode != RealtimeMode::kOff) {
-      const ThreadCensus c = place_other_threads(node.realtime);
-      spdlog::info("{}: the loop at SCHED_FIFO {}; {} middleware threads at {}, {} of its own at SCHED_OTHER{}", node.name,
-                   node.realtime.priority, c.middleware,
-                   node.realtime.dds_priority > 0 ? fmt::format("SCHED_FIFO {}", node.realtime.dds_priority)
-                                                  : std::string("SCHED_OTHER"),
-                   c.own, c.refused > 0 ? fmt::format(" ({} threads the kernel refused to move)", c.refused) : "");
-    }
-    // every endpoint exists now: announce them a few times over, for peers behind a lossy link
-    participant.boost_discovery();
-    started_ns = monotonic_now_ns();
-    run_loop(node, *logic, status, pacer, trace.get(), state_watch);
-    if (trace) trace->finish();
-    // bounded, so that shutdown stays well inside 100 ms even with a dead status reader
-    status.publish_stopping(*logic, pacer.stats(), 50 * kNsPerMs);
-
-    report.name = node.name;
-    report.role = description.role_name;
-    report.final_state = state_name(logic->state());
-    report.rate_hz = node.rate_hz;
-    report.run_time_s = static_cast<double>(monotonic_now_ns() - started_ns) * 1e-9;
-    report.add_loop(pacer.stats());
-    logic->fill_report(report);
-    if (trace) report.counters.emplace_back("trace_rows_dropped", static_cast<double>(trace->rows_dropped()));
-    report.add_links(participant);
-  }  // the participant and all its entities are deleted here
+  // from here a signal raises the flag: the participant must be deleted, the report written
+  set_signals_exit_at_once(false);
+  RunOutcome out;
+  run_on_network(cli, description, setup, out);
+  NodeReport& report = out.report;
   if (const int64_t signalled = shutdown_requested_at_ns(); signalled > 0) {
     report.shutdown_ms = static_cast<double>(monotonic_now_ns() - signalled) * 1e-6;
     spdlog::info("{}: shut down {:.1f} ms after the signal", node.name, report.shutdown_ms);
   }
+  // after the loop and the shutdown measurement: writing is slow and never on the control path;
+  // before the report, which counts the rows that reached the file (a failed write costs no report)
+  const bool trace_written = out.trace == nullptr || finish_trace(cli, node, *out.trace, out.stream.get(), report);
   log_summary(report);
   if (!cli.report_path.empty()) write_report(report, cli.report_path);
-  // after the loop and the shutdown measurement: writing is slow and never on the control path;
-  // after the report, so that a trace that cannot be written does not cost the report too
-  if (stream) {
-    stream->stop();
-    spdlog::info("{}: streamed {} trace rows ({} lost) to {}", node.name, stream->rows_written(), stream->rows_lost(),
-                 cli.trace_path);
-  } else if (trace) {
-    trace->write_csv(cli.trace_path);
-    spdlog::info("{}: wrote {} trace rows ({} dropped) to {}", node.name, trace->rows(), trace->rows_dropped(),
-                 cli.trace_path);
-  }
-  return 0;
+  return trace_written ? 0 : 1;
 }
 
 }  // namespace
@@ -279,6 +329,9 @@ int run_node(int argc, char** argv, const NodeDescription& description) {
   }
   spdlog::set_level(spdlog::level::from_str(cli.log_level));
   spdlog::set_pattern("[%H:%M:%S.%e] [%^%l%$] %v");
+  // until the node joins the network a signal ends it at once: parsing a large config or compiling
+  // a model polls no flag (run() switches this off before the participant)
+  set_signals_exit_at_once(true);
   install_shutdown_handlers();
   // wake up at the deadline, not up to 50 us later (the kernel's default timer slack)
   prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);

@@ -2,31 +2,42 @@
 
 #include <algorithm>
 #include <cinttypes>
+#include <cstdio>
 #include <limits>
-#include <memory>
 #include <stdexcept>
 
 #include "teleop/runtime/status_names.h"
+#include "trace_file.h"
 
 namespace teleop::runtime {
 namespace {
 
 // `value` / `unit` with `decimals` digits after the point, from integers: exact, where a double
 // would round the last digits of a time since the epoch
-void write_fixed(FILE* f, int64_t value, int64_t unit, int decimals) {
+void append_fixed(std::string& text, int64_t value, int64_t unit, int decimals) {
   const int64_t magnitude = value < 0 ? -value : value;
-  std::fprintf(f, "%s%" PRId64 ".%0*" PRId64, value < 0 ? "-" : "", magnitude / unit, decimals, magnitude % unit);
+  char number[48];
+  const int n = std::snprintf(number, sizeof number, "%s%" PRId64 ".%0*" PRId64, value < 0 ? "-" : "", magnitude / unit,
+                              decimals, magnitude % unit);
+  text.append(number, static_cast<size_t>(n));
+}
+
+void append_value(std::string& text, double value) {
+  char number[32];
+  const int n = std::snprintf(number, sizeof number, ",%.9g", value);
+  text.append(number, static_cast<size_t>(n));
 }
 
 // a state column's value: its state's name; one that names no state (NaN, a fraction) as a number
-void write_state(FILE* f, double value) {
+void append_state(std::string& text, double value) {
   for (const msg::NodeState s : kNodeStates) {
     if (value == static_cast<double>(s)) {
-      std::fprintf(f, ",%s", state_name(s));
+      text += ',';
+      text += state_name(s);
       return;
     }
   }
-  std::fprintf(f, ",%.9g", value);
+  append_value(text, value);
 }
 
 }  // namespace
@@ -74,40 +85,31 @@ bool TraceRecorder::copy_row(uint64_t index, TraceTime& time, double* values) co
   return safely_held(index);
 }
 
-void TraceRecorder::write_header(FILE* f) const {
-  std::fputs("t_s,wall_s,lateness_us", f);
-  for (const auto& c : columns_) std::fprintf(f, ",%s", c.c_str());
-  std::fputc('\n', f);
+void TraceRecorder::append_header(std::string& text) const {
+  text += "t_s,wall_s,lateness_us";
+  for (const auto& c : columns_) text += "," + c;
+  text += '\n';
 }
 
-void TraceRecorder::write_row(FILE* f, const TraceTime& time, const double* values) const {
-  write_fixed(f, time.t_ns, 1'000'000'000, 9);
-  std::fputc(',', f);
-  write_fixed(f, time.wall_ns, 1'000'000'000, 9);
-  std::fputc(',', f);
-  write_fixed(f, time.lateness_ns, 1'000, 3);
+void TraceRecorder::append_row(std::string& text, const TraceTime& time, const double* values) const {
+  append_fixed(text, time.t_ns, 1'000'000'000, 9);
+  text += ',';
+  append_fixed(text, time.wall_ns, 1'000'000'000, 9);
+  text += ',';
+  append_fixed(text, time.lateness_ns, 1'000, 3);
   for (size_t i = 0; i < columns_.size(); ++i) {
     if (state_columns_[i]) {
-      write_state(f, values[i]);
+      append_state(text, values[i]);
     } else {
-      std::fprintf(f, ",%.9g", values[i]);
+      append_value(text, values[i]);
     }
   }
-  std::fputc('\n', f);
+  text += '\n';
 }
 
 void TraceRecorder::write_csv(const std::string& path) const {
-  const std::unique_ptr<FILE, int (*)(FILE*)> file(std::fopen(path.c_str(), "w"), &std::fclose);
-  if (!file) throw std::runtime_error("cannot write the trace " + path);
-  FILE* f = file.get();
-  write_header(f);
-  // the oldest held row is the one after the newest when the ring has wrapped
-  const uint64_t first = recorded() > capacity_rows_ ? recorded() % capacity_rows_ : 0;
-  for (uint64_t k = 0; k < rows(); ++k) {
-    const uint64_t slot = (first + k) % capacity_rows_;
-    write_row(f, times_[slot], values_.data() + slot * columns_.size());
-  }
-  if (std::fflush(f) != 0 || std::ferror(f)) throw std::runtime_error("error writing the trace " + path);
+  const TraceFileResult result = write_held_rows(*this, path);
+  if (!result.error.empty()) throw std::runtime_error("error writing the trace " + path + ": " + result.error);
 }
 
 }  // namespace teleop::runtime

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <regex>
 
+#include "alias_bomb.h"
 #include "bag_test_support.h"
 #include "test_helpers.h"
 
@@ -115,6 +116,15 @@ TEST(BagBadInput, MetadataThatIsNotYaml) {
   write_text(bag.metadata(), "rosbag2_bagfile_information: {version: [");
   const std::string error = open_error(bag.dir());
   EXPECT_NE(error.find(bag.metadata() + ": not readable as YAML"), std::string::npos) << error;
+}
+
+// a recording from elsewhere is read like a configuration: an alias bomb is refused at once
+TEST(BagBadInput, MetadataThatIsAnAliasBomb) {
+  BagDir bag;
+  test::record_simple(bag.dir(), 2);
+  write_text(bag.metadata(), teleop::test::alias_bomb(11));
+  const std::string error = open_error(bag.dir());
+  EXPECT_NE(error.find(bag.metadata() + ":6: " + teleop::test::kAliasBombError), std::string::npos) << error;
 }
 
 TEST(BagBadInput, MetadataWithoutItsKeys) {

@@ -4,6 +4,7 @@
 #include <functional>
 #include <string>
 
+#include "alias_bomb.h"
 #include "teleop/common/config.h"
 #include "test_helpers.h"
 
@@ -55,6 +56,12 @@ TEST(ConfigOverride, ReportsAMalformedSpecNamingTheArgument) {
   EXPECT_NE(error_of([&] { c.apply_override("x="); }).find("--set x=: expected KEY=VALUE"), std::string::npos);
   EXPECT_NE(error_of([&] { c.apply_override("a..b=1"); }).find("--set a..b=1: empty key segment"), std::string::npos);
   EXPECT_NE(error_of([&] { c.apply_override("x=[1,"); }).find("--set x=[1,: malformed YAML value"), std::string::npos);
+}
+
+TEST(ConfigOverride, RefusesAnAliasBombAsAValueNamingTheArgument) {
+  ConfigNode c = load("x: 1\n");
+  const std::string spec = "x=" + test::alias_bomb(11);
+  EXPECT_EQ(error_of([&] { c.apply_override(spec); }), "node.yaml (--set " + spec + "):6: x." + test::kAliasBombError);
 }
 
 TEST(ConfigOverride, RefusesAPathThroughAScalar) {

@@ -10,6 +10,7 @@
 #include <functional>
 #include <string>
 
+#include "alias_bomb.h"
 #include "teleop/common/joint_config.h"
 #include "test_helpers.h"
 
@@ -421,6 +422,20 @@ TEST(ConfigNode, RejectsADuplicateOrNonScalarKeyInAnOverride) {
   ConfigNode c = load("node: {}\n");
   EXPECT_EQ(error_of([&] { c.apply_override("node={a: 1, a: 2}"); }),
             "test.yaml (--set node={a: 1, a: 2}):1: node.a: duplicate key (first given on line 1)");
+}
+
+TEST(ConfigNode, RefusesAnAliasBombInAFileNamingTheFileAndTheAlias) {
+  TempDir dir("teleop_config_test");
+  const std::string path = dir.write("bomb.yaml", test::alias_bomb(11));
+  EXPECT_EQ(error_of([&] { ConfigNode::load_file(path); }), path + ":6: " + test::kAliasBombError);
+}
+
+TEST(ConfigNode, RefusesAPathToSomethingElseThanARegularFile) {
+  TempDir dir("teleop_config_test");
+  const ConfigNode c = load("model: /dev/null\nfolder: " + dir.path("") + "\n");
+  EXPECT_EQ(error_of([&] { c.get_path("model"); }),
+            "test.yaml:1: model: /dev/null is not a regular file (a folder, FIFO or device)");
+  EXPECT_NE(error_of([&] { c.get_path("folder"); }).find(" is not a regular file"), std::string::npos);
 }
 
 TEST(ConfigNode, NamesTheFolderWhenAFolderIsGivenAsTheFile) {

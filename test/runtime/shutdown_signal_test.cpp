@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <cstdlib>
 
 #include "teleop/common/clock.h"
 
@@ -44,6 +45,32 @@ TEST(ShutdownSignal, KeepsTimeOfFirstRequestWhenRequestedAgain) {
   ASSERT_EQ(std::raise(SIGTERM), 0);
   EXPECT_EQ(shutdown_requested_at_ns(), first);
   EXPECT_TRUE(shutdown_requested());
+}
+
+// before a node joins the network nothing polls the flag: the signal ends the process itself
+TEST(ShutdownSignalDeathTest, ExitsAtOnceWith128PlusTheSignalWhileSwitchedOn) {
+  for (const int sig : {SIGTERM, SIGINT}) {
+    EXPECT_EXIT(
+        {
+          set_signals_exit_at_once(true);
+          install_shutdown_handlers();
+          std::raise(sig);
+          std::abort();  // not reached
+        },
+        ::testing::ExitedWithCode(128 + sig), "stopped by a signal before joining the network");
+  }
+}
+
+TEST(ShutdownSignalDeathTest, SetsTheFlagAgainOnceSwitchedOff) {
+  EXPECT_EXIT(
+      {
+        set_signals_exit_at_once(true);
+        install_shutdown_handlers();
+        set_signals_exit_at_once(false);
+        std::raise(SIGTERM);
+        std::exit(shutdown_requested() ? 7 : 8);
+      },
+      ::testing::ExitedWithCode(7), "");
 }
 
 }  // namespace

@@ -17,11 +17,6 @@
 namespace teleop::runtime {
 namespace {
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 // a row at `t_ns` on the monotonic clock, on time
 TraceTime at(int64_t t_ns) { return {t_ns, 0, 0}; }
 
@@ -35,7 +30,7 @@ TEST(TraceRecorder, WritesHeaderTimesAndValuesWhenNotFull) {
   test::TempDir dir("trace_recorder");
   r.write_csv(dir.path("t.csv"));
   // the wall time to the nanosecond (a double would lose the last digits), the lateness in us
-  EXPECT_EQ(slurp(dir.path("t.csv")),
+  EXPECT_EQ(test::read_text(dir.path("t.csv")),
             "t_s,wall_s,lateness_us,a,b\n"
             "1.500000001,1718000000.123456789,12.345,1.25,-3e-07\n"
             "2.000000000,1718000000.623456790,0.007,0.333333333,nan\n");
@@ -50,7 +45,7 @@ TEST(TraceRecorder, KeepsTheMostRecentRowsAndCountsTheOverwrittenWhenTheRingWrap
   EXPECT_EQ(r.rows_dropped(), 2u);
   test::TempDir dir("trace_recorder_wrap");
   r.write_csv(dir.path("t.csv"));
-  EXPECT_EQ(slurp(dir.path("t.csv")),
+  EXPECT_EQ(test::read_text(dir.path("t.csv")),
             "t_s,wall_s,lateness_us,v\n2.000000000,0.000000000,0.000,2\n3.000000000,0.000000000,0.000,3\n"
             "4.000000000,0.000000000,0.000,4\n");
 }
@@ -67,7 +62,7 @@ TEST(TraceRecorder, WritesStateColumnsAsTheStatesNamesAndOtherValuesAsNumbers) {
   row[1] = 2.5;  // names no state: written as it is; the last column unset
   test::TempDir dir("trace_recorder_states");
   r.write_csv(dir.path("t.csv"));
-  EXPECT_EQ(slurp(dir.path("t.csv")),
+  EXPECT_EQ(test::read_text(dir.path("t.csv")),
             "t_s,wall_s,lateness_us,state,left_state,statex,n\n"
             "0.000000000,0.000000000,0.000,running,safe_hold,1,3\n"
             "0.001000000,0.000000000,0.000,fault,2.5,nan,nan\n");
@@ -78,7 +73,7 @@ TEST(TraceRecorder, WritesALateCycleAndTimesBeforeTheEpochWithTheirSign) {
   r.begin_row({-1'500'000'000, -2, -1'250})[0] = 1.0;
   test::TempDir dir("trace_recorder_sign");
   r.write_csv(dir.path("t.csv"));
-  EXPECT_EQ(slurp(dir.path("t.csv")), "t_s,wall_s,lateness_us,v\n-1.500000000,-0.000000002,-1.250,1\n");
+  EXPECT_EQ(test::read_text(dir.path("t.csv")), "t_s,wall_s,lateness_us,v\n-1.500000000,-0.000000002,-1.250,1\n");
 }
 
 TEST(TraceRecorder, KnowsAStateColumnByItsName) {
@@ -168,7 +163,7 @@ TEST(NodeLogicTrace, RecordsOneRowPerCycleWithoutAllocatingWhenDrivenLikeTheRunn
   }
   test::TempDir dir("trace_logic");
   trace.write_csv(dir.path("t.csv"));
-  EXPECT_EQ(slurp(dir.path("t.csv")),
+  EXPECT_EQ(test::read_text(dir.path("t.csv")),
             "t_s,wall_s,lateness_us,index,twice\n0.000000005,0.000000000,0.005,0,0\n"
             "0.001000005,0.000000000,0.005,1,2\n0.002000005,0.000000000,0.005,2,4\n");
 }

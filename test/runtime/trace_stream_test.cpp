@@ -1,6 +1,8 @@
 #include "trace_stream.h"
 
 #include <gtest/gtest.h>
+#include <spdlog/sinks/ringbuffer_sink.h>
+#include <spdlog/spdlog.h>
 
 #include <chrono>
 #include <fstream>
@@ -39,7 +41,7 @@ TEST(TraceStream, WritesEveryRowInOrderWhileTheLoopRecords) {
   TraceRecorder trace({"i", "twice"}, 8192);
   TraceStream stream(trace, dir.path("t.csv"), 1'000'000);
   record(trace, 3000, std::chrono::microseconds(500));
-  stream.stop();
+  EXPECT_TRUE(stream.stop());
   EXPECT_EQ(stream.rows_written(), 3000u);
   EXPECT_EQ(stream.rows_lost(), 0u);
   const auto lines = lines_of(dir.path("t.csv"));
@@ -79,6 +81,46 @@ TEST(TraceStream, CountsTheRowsTheRingOverwroteBeforeTheWriterCame) {
   const auto lines = lines_of(dir.path("t.csv"));
   EXPECT_EQ(lines.size(), stream.rows_written() + 1);
   EXPECT_EQ(lines.back(), "0.000999000,1.000999000,0.000,999,1998");
+}
+
+// the log lines of a test instead of the console
+class CapturedLog {
+ public:
+  CapturedLog() : previous_(spdlog::default_logger()), sink_(std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(64)) {
+    spdlog::set_default_logger(std::make_shared<spdlog::logger>("captured", sink_));
+  }
+  ~CapturedLog() { spdlog::set_default_logger(previous_); }
+  CapturedLog(const CapturedLog&) = delete;
+  CapturedLog& operator=(const CapturedLog&) = delete;
+  /// The lines logged so far that contain `text`.
+  size_t count(const std::string& text) const {
+    size_t n = 0;
+    for (const std::string& line : sink_->last_formatted()) n += line.find(text) != std::string::npos ? 1 : 0;
+    return n;
+  }
+
+ private:
+  std::shared_ptr<spdlog::logger> previous_;
+  std::shared_ptr<spdlog::sinks::ringbuffer_sink_mt> sink_;
+};
+
+TEST(TraceStream, LogsARefusedWriteWhenItHappensOnlyOnceAndCountsEveryRowLost) {
+  CapturedLog log;
+  TraceRecorder trace({"i", "twice"}, 8192);
+  // a full disk: every write is refused, the header's first
+  TraceStream stream(trace, "/dev/full", 1'000'000);
+  record(trace, 500, std::chrono::microseconds(0), false);
+  const std::string failure = "trace /dev/full: write failed (No space left on device)";
+  for (int i = 0; i < 10'000 && log.count(failure) == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  // said by the writer while the node runs, not at the end
+  EXPECT_EQ(log.count(failure), 1u);
+  // a hundred more refused writes: not a line each
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  trace.finish();
+  EXPECT_FALSE(stream.stop());
+  EXPECT_EQ(log.count("write failed"), 1u);
+  EXPECT_EQ(stream.rows_written(), 0u);
+  EXPECT_EQ(stream.rows_lost(), 500u);
 }
 
 TEST(TraceStream, NamesAFileItCannotWrite) {

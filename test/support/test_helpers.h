@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <sstream>
 #include <string>
 
 namespace teleop::test {
@@ -26,6 +27,14 @@ std::string error_of(const std::function<void()>& f) {
   }
   ADD_FAILURE() << "did not throw";
   return {};
+}
+
+/// The whole text of a file ("" when it cannot be read).
+inline std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 /// Files in a fresh temporary directory, removed with it.

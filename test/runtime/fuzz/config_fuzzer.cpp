@@ -4,9 +4,10 @@
 // its input only with a ConfigError (a node exits 2 naming file and key); any other exception, a
 // crash, a leak or undefined behaviour is a finding.
 //
-// The seed corpus is the shipped node configs. They name model files and recordings relative to
-// themselves; the fuzzer's configs live in a scratch folder beside minimal stand-ins of those
-// files (a model that compiles, a recording with the right columns), so that parsing goes on
+// Each input is also given as a `--set` value. The seed corpus is the shipped node configs, an
+// alias bomb and a config with anchors (seeds/). The node configs name model files and recordings
+// relative to themselves; the fuzzer's configs live in a scratch folder beside minimal stand-ins of
+// those files (a model that compiles, a recording with the right columns), so that parsing goes on
 // past the paths into the rest of each section.
 #include <unistd.h>
 
@@ -67,21 +68,36 @@ const std::string& source_name() {
   return name;
 }
 
+// `read` may refuse its input only with a ConfigError (a message naming file and key: what a node
+// does with bad input); anything else is a finding
+void refused_only_with_config_error(const std::string& reader, const std::function<void()>& read) {
+  try {
+    read();
+  } catch (const teleop::ConfigError&) {
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s threw something else than ConfigError: %s\n", reader.c_str(), e.what());
+    std::abort();
+  }
+}
+
 // what run_node reads for one role (node_runner.cpp, load_setup)
 void read_like_a_node(const std::string& text, const std::string& role,
                       const std::function<void(const teleop::ConfigNode&)>& parse_role) {
-  try {
+  refused_only_with_config_error(role + " config parser", [&] {
     const teleop::ConfigNode root = teleop::ConfigNode::load_string(text, source_name());
     teleop::runtime::parse_node_config(root.child("node"), role);
     teleop::transport::parse_participant_config(root.child("transport"), role);
     parse_role(root);
     root.check_all_used();
-  } catch (const teleop::ConfigError&) {
-    // refused with a message naming file and key: what a node does with bad input
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s config parser threw something else than ConfigError: %s\n", role.c_str(), e.what());
-    std::abort();
-  }
+  });
+}
+
+// the same text as the value of a `--set KEY=VALUE` (a YAML document of its own: aliases and all)
+void read_like_a_set_value(const std::string& text) {
+  refused_only_with_config_error("--set", [&] {
+    teleop::ConfigNode root = teleop::ConfigNode::load_string("node: {name: x}\n", source_name());
+    root.apply_override("node.value=" + text);
+  });
 }
 
 }  // namespace
@@ -92,5 +108,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   read_like_a_node(text, "follower", [](const teleop::ConfigNode& root) { teleop::follower::parse_follower_arms(root); });
   read_like_a_node(text, "twin", [](const teleop::ConfigNode& root) { teleop::twin::parse_twin_arms(root); });
   read_like_a_node(text, "hand", [](const teleop::ConfigNode& root) { teleop::hand::parse_hand_config(root); });
+  read_like_a_set_value(text);
   return 0;
 }

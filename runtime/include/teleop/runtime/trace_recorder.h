@@ -6,7 +6,6 @@
 
 #include <atomic>
 #include <cstdint>
-#include <cstdio>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -52,17 +51,27 @@ class TraceRecorder {
   /// it) or was overwritten during the copy. Any thread.
   bool copy_row(uint64_t index, TraceTime& time, double* values) const;
 
+  /// Row `k` of the rows held now, oldest first (k < rows()): for writing them once the recording
+  /// has ended (no begin_row() meanwhile).
+  const TraceTime& held_time(uint64_t k) const { return times_[held_slot(k)]; }
+  const double* held_values(uint64_t k) const { return values_.data() + held_slot(k) * columns_.size(); }
+
   /// Writes the held rows, oldest first: header `t_s,wall_s,lateness_us,<columns>`, then `t_s` and
   /// `wall_s` in seconds with 9 decimals (exact ns), `lateness_us` with 3, the values as `%.9g`
   /// (a state column: its state's name; `nan` where unset). Throws std::runtime_error when the file
   /// cannot be written.
   void write_csv(const std::string& path) const;
-  /// The CSV's header line and one row (columns().size() values), in that format.
-  void write_header(FILE* f) const;
-  void write_row(FILE* f, const TraceTime& time, const double* values) const;
+  /// Appends the CSV's header line, or one row (columns().size() values), in that format, to `text`.
+  void append_header(std::string& text) const;
+  void append_row(std::string& text, const TraceTime& time, const double* values) const;
 
  private:
   uint64_t recorded() const { return recorded_.load(std::memory_order_relaxed); }
+  /// The ring's slot of held row `k`: the oldest held row is the one after the newest when the ring has wrapped.
+  uint64_t held_slot(uint64_t k) const {
+    const uint64_t first = recorded() > capacity_rows_ ? recorded() % capacity_rows_ : 0;
+    return (first + k) % capacity_rows_;
+  }
   /// Row `index` is in the newest half of the ring (the ring holds [recorded - capacity, recorded)).
   bool safely_held(uint64_t index) const {
     return index + (capacity_rows_ + 1) / 2 >= recorded_.load(std::memory_order_relaxed);
