@@ -36,6 +36,27 @@ install(FILES ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR} 
 add_custom_target(teleop_installables)
 get_property(installed_targets GLOBAL PROPERTY TELEOP_INSTALLED_TARGETS)
 add_dependencies(teleop_installables ${installed_targets})
+# run by the install before it copies anything (CMakeLists.txt): every installed target built?
+set(installed_files "")
+foreach(target ${installed_targets})
+  string(APPEND installed_files "$<TARGET_FILE:${target}>\n")
+endforeach()
+file(GENERATE OUTPUT ${CMAKE_BINARY_DIR}/teleop_installed_files.txt CONTENT "${installed_files}")
+file(WRITE ${CMAKE_BINARY_DIR}/teleop_check_installables.cmake [=[
+file(STRINGS "${CMAKE_CURRENT_LIST_DIR}/teleop_installed_files.txt" files)
+set(missing "")
+foreach(f IN LISTS files)
+  if(NOT EXISTS "${f}")
+    get_filename_component(name "${f}" NAME)
+    list(APPEND missing ${name})
+  endif()
+endforeach()
+if(missing)
+  list(JOIN missing ", " missing)
+  message(FATAL_ERROR "teleop: this build tree lacks installed targets (${missing}); nothing was installed. "
+    "Build them first: cmake --build ${CMAKE_CURRENT_LIST_DIR} --target teleop_installables")
+endif()
+]=])
 
 # `cpack -G DEB` in the build directory (scripts/package.sh): teleop_<version>_amd64.deb, one
 # package with the executables, the libraries, the headers, the CMake files and the data.

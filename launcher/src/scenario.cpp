@@ -4,9 +4,32 @@
 #include <set>
 
 #include "teleop/common/config.h"
+#include "teleop/common/data_paths.h"
 
 namespace teleop::launcher {
 namespace fs = std::filesystem;
+namespace {
+
+// `config:` is a path, relative to the scenario's own folder (so a scenario copied elsewhere with
+// its node configs beside it works), or a name of config/nodes (`follower`), as on every command
+// line; a plain name that is also a file beside the scenario is that file
+std::string node_config_path(const ConfigNode& n, const fs::path& base) {
+  const fs::path config = n.get_string("config");
+  const fs::path path = (config.is_absolute() ? config : base / config).lexically_normal();
+  std::error_code ec;
+  if (fs::exists(path, ec)) return path.string();
+  if (!config.has_parent_path()) {
+    try {
+      return resolve_config("nodes", config.string());
+    } catch (const ConfigError& e) {
+      throw n.error("config", e.what());
+    }
+  }
+  throw n.error("config", "file " + path.string() + " does not exist (a path is relative to the scenario's folder; a "
+                          "name such as 'follower' is a shipped node config)");
+}
+
+}  // namespace
 
 Scenario load_scenario(const std::string& path) {
   const ConfigNode root = ConfigNode::load_file(path);
@@ -23,9 +46,7 @@ Scenario load_scenario(const std::string& path) {
     node.name = n.get_string("name");
     if (!names.insert(node.name).second) throw n.error("name", "'" + node.name + "' is used by two nodes");
     node.executable = n.get_string("executable");
-    const fs::path config = n.get_string("config");
-    node.config = (config.is_absolute() ? config : base / config).lexically_normal().string();
-    if (!fs::exists(node.config)) throw n.error("config", "file " + node.config + " does not exist");
+    node.config = node_config_path(n, base);
     node.args = n.get_string_list("args");
     node.site = n.get_string("site", "");
     if (const auto set = n.optional_child("set")) {

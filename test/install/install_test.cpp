@@ -42,6 +42,35 @@ std::set<std::string> mapped_teleop_libraries(pid_t pid) {
   return files;
 }
 
+// A tree that built only some installed targets (the demo's build/demo): moves one aside for the
+// test's duration (the test runs alone: SERIAL) and puts it back
+class MissingBuildOutput {
+ public:
+  explicit MissingBuildOutput(fs::path file) : file_(std::move(file)), aside_(file_.string() + ".aside") {
+    fs::rename(file_, aside_);
+  }
+  ~MissingBuildOutput() { fs::rename(aside_, file_); }
+  MissingBuildOutput(const MissingBuildOutput&) = delete;
+  MissingBuildOutput& operator=(const MissingBuildOutput&) = delete;
+
+ private:
+  fs::path file_;
+  fs::path aside_;
+};
+
+TEST(Install, FromATreeLackingAnInstalledTargetCopiesNothingAndSaysWhatToBuild) {
+  const fs::path prefix = fs::path(make_temp_dir()) / "prefix";
+  ProcessResult r;
+  {
+    const MissingBuildOutput missing(fs::path(TELEOP_BUILD_DIR) / "bin/teleop_hand");
+    r = run_process({TELEOP_CMAKE_COMMAND, "--install", TELEOP_BUILD_DIR, "--prefix", prefix.string()}, 120s);
+  }
+  EXPECT_NE(r.exit_status, 0) << r.output;
+  EXPECT_NE(r.output.find("lacks installed targets (teleop_hand)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--target teleop_installables"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(prefix)) << "nothing was copied";
+}
+
 TEST(Install, AConsumerBuiltAgainstTheInstallDrivesTheInstalledFollower) {
   const fs::path tmp = make_temp_dir();
   const fs::path prefix = tmp / "prefix";

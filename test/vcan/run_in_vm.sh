@@ -101,16 +101,22 @@ if [ ! -f "$kdir/.done" ] || [ ! -f "$kdir/vmlinuz" ]; then
 fi
 vmlinuz="$kdir/vmlinuz"
 
-# copies a binary and its ldd libraries into root $1 (binary into $3)
+# copies a binary and its ldd libraries into root $1 (binary into $3): the system's at their own
+# paths, the others (teleop's, from the build tree) into /opt/teleop/lib, which cmd.sh puts on
+# LD_LIBRARY_PATH: a build tree under /tmp would be hidden by the tmpfs the guest mounts there
 add_elf() {
   local root=$1 src=$2 dst=$3
   mkdir -p "$root$(dirname "$dst")"
   cp -L "$src" "$root$dst"
-  local lib
+  local lib to
   for lib in $(ldd "$src" 2>/dev/null | grep -o '/[^ ]*' || true); do
-    [ -e "$root$lib" ] && continue
-    mkdir -p "$root$(dirname "$lib")"
-    cp -L "$lib" "$root$lib"
+    case "$lib" in
+      /lib/* | /lib64/* | /usr/lib/* | /usr/lib64/*) to=$lib ;;
+      *) to=/opt/teleop/lib/$(basename "$lib") ;;
+    esac
+    [ -e "$root$to" ] && continue
+    mkdir -p "$root$(dirname "$to")"
+    cp -L "$lib" "$root$to"
   done
 }
 
@@ -152,6 +158,7 @@ for d in "${datas[@]}"; do
 done
 {
   printf 'cd /tmp\n'
+  printf 'export LD_LIBRARY_PATH=/opt/teleop/lib\n'
   # the sanitizer options of the test preset (e.g. the ASan build's new_delete_type_mismatch=0,
   # for Fast DDS) hold in the VM too
   for v in ASAN_OPTIONS UBSAN_OPTIONS TSAN_OPTIONS LSAN_OPTIONS; do

@@ -15,8 +15,11 @@
 #include "bus.h"
 #include "teleop/bag/bag_writer.h"
 #include "teleop/common/clock.h"
+#include "teleop/common/config.h"
+#include "teleop/common/did_you_mean.h"
 #include "teleop/runtime/shutdown_signal.h"
 #include "teleop/tools/sample_text.h"
+#include "teleop/transport/topics.h"
 
 namespace teleop::tools {
 namespace {
@@ -91,6 +94,14 @@ std::string qos_yaml(transport::QosPreset preset) {
 bool wanted(const RecordOptions& options, const std::string& topic) {
   return options.topics.empty() ||
          std::find(options.topics.begin(), options.topics.end(), topic) != options.topics.end();
+}
+
+// a member of a topic family: the family's prefix and a name after it
+bool in_family(const std::string& topic) {
+  for (const std::string_view prefix : {transport::topics::kFollowerObjectPosePrefix, transport::topics::kTwinContactWrenchPrefix}) {
+    if (topic.size() > prefix.size() && topic.compare(0, prefix.size(), prefix) == 0) return true;
+  }
+  return false;
 }
 
 double cpu_seconds() {
@@ -215,7 +226,18 @@ class Recording {
 
 }  // namespace
 
+void check_record_topics(const std::vector<std::string>& topics) {
+  std::vector<std::string> known;
+  for (const transport::KnownTopic& k : transport::known_topics()) known.push_back(k.name);
+  for (const std::string& topic : topics) {
+    if (in_family(topic) || std::find(known.begin(), known.end(), topic) != known.end()) continue;
+    throw ConfigError("--topics " + topic + ": not a teleop topic" + did_you_mean(topic, known) +
+                      " (`teleop topic list` shows the bus's topics)");
+  }
+}
+
 RecordResult record(const BusOptions& bus_options, const RecordOptions& options, FILE* log) {
+  check_record_topics(options.topics);
   const int64_t start_ns = monotonic_now_ns();
   Recording recording(bus_options, options, log);
   recording.subscribe_known_topics();

@@ -40,6 +40,11 @@ struct RecordResult {
   std::vector<std::string> topics;
 };
 
+/// Throws ConfigError naming the first of `topics` that is no teleop topic (a fixed name of
+/// topics.h, or a family prefix with a name after it), with the topic it may have meant: a typo
+/// in `record --topics` is refused before recording, not found out after it.
+void check_record_topics(const std::vector<std::string>& topics);
+
 /// Records until interrupted or the duration is over. Throws bag::BagError (a full disk, the size
 /// cap: after closing the recording, which stays readable) or ConfigError.
 RecordResult record(const BusOptions& bus, const RecordOptions& options, FILE* log);

@@ -41,8 +41,13 @@ struct SecurityConfig {
   bool enabled() const { return !identity_certificate.empty(); }
 };
 
+/// The DDS domain of every shipped node config, and so of every node and tool not told otherwise:
+/// the tools a newcomer starts meet the demo he just started. ROS 2's default domain 0 is left to
+/// ROS 2 (a teleop node on 0 would see a whole ROS 2 system's discovery).
+inline constexpr int kTeleopDomainId = 42;
+
 struct ParticipantConfig {
-  int domain_id = 0;
+  int domain_id = kTeleopDomainId;
   /// Participant name shown in discovery tools.
   std::string name = "teleop";
   /// A node's participant: another participant of the same name on the domain (two setups on one
