@@ -25,7 +25,7 @@ TEST(StormNetns, ReadersAndAChurnOfParticipantsNeitherBlockNorBreakTheFollower) 
   // as a robot host runs it: the loops at SCHED_FIFO, the middleware below them (CI runs as root)
   options.realtime = "required";
   const StormResult r = run_storm(options);
-  ASSERT_TRUE(r.error.empty()) << r.error;
+  ASSERT_TRUE(r.error.empty()) << r.error << "\n" << r.outputs;
   std::cout << describe(r) << "\n";
 
   EXPECT_GE(r.churn_rounds, 1) << "the storm happened: participants joined and left";
