@@ -185,7 +185,7 @@ TEST(CommandAuthority, AFollowerStoppedWhilePressingOnTheWallRejoinsWithoutAStep
   ASSERT_EQ(follower.stop(SIGTERM, 10s), 0) << follower.output();
 
   const runtime::NodeReport f = site.report("follower");
-  EXPECT_GE(counter(f, "stall_holds"), 1.0);
+  EXPECT_GE(counter(f, "stall_holds"), 1.0) << follower.output();
   EXPECT_EQ(counter(f, "reflex_trips"), 0.0);
   const experiment::Trace t = site.trace("follower");
   const double before = peak_force_n(t, 0.0, stopped_s);
