@@ -14,7 +14,8 @@ struct FixedText {
 
   void assign(std::string_view s) {
     const size_t n = s.size() < N - 1 ? s.size() : N - 1;
-    std::memcpy(text, s.data(), n);
+    // an empty view may hold a null pointer, which memcpy must not get even for 0 bytes
+    if (n > 0) std::memcpy(text, s.data(), n);
     text[n] = '\0';
   }
   std::string_view view() const { return {text, strnlen(text, N)}; }
