@@ -6,7 +6,15 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-./scripts/setup.sh
-cmake --workflow --preset default
-cmake --workflow --preset asan
-cmake --workflow --preset tsan-core
+# each stage's wall time, so a run's budget (CI: 60 min on 2 cores) is visible stage by stage
+stage() {
+  local name=$1 start=$SECONDS
+  shift
+  "$@"
+  echo "run_tests: stage $name took $((SECONDS - start)) s (total $SECONDS s)"
+}
+
+stage setup ./scripts/setup.sh
+stage default cmake --workflow --preset default
+stage asan cmake --workflow --preset asan
+stage tsan-core cmake --workflow --preset tsan-core
