@@ -7,8 +7,8 @@
 
 #include <memory>
 
+#include "teleop/leader/leader_device.h"
 #include "teleop/robot/mujoco_hardware.h"
-#include "leader_device.h"
 
 namespace teleop::leader {
 
