@@ -65,9 +65,11 @@ class RecordingSpec final : public DeviceSpec {
   JointVector pose_rad_;
 };
 
-// registers `recording`, whose own keys are leader.recording.{gain, pose_rad}
-void add_recording_device(DeviceRegistry& registry, const std::shared_ptr<Record>& record) {
-  registry.add("recording", [record](const ConfigNode& section) {
+// the simulated devices and the test's own, `recording`, whose keys are leader.recording.{gain, pose_rad}
+DeviceRegistry devices_with_recording(const std::shared_ptr<Record>& record) {
+  DeviceRegistry devices;
+  add_simulated_devices(devices);
+  devices.add("recording", [record](const ConfigNode& section) {
     const ConfigNode own = section.child("recording");
     record->gain = own.get_double("gain", Range{0, 10});
     JointVector pose{};
@@ -75,6 +77,7 @@ void add_recording_device(DeviceRegistry& registry, const std::shared_ptr<Record
     std::copy(values.begin(), values.end(), pose.begin());
     return std::make_shared<RecordingSpec>(record, pose);
   });
+  return devices;
 }
 
 ConfigNode leader_section(const std::string& keys) {
@@ -83,9 +86,7 @@ ConfigNode leader_section(const std::string& keys) {
 
 TEST(DeviceRegistry, BuildsTheDeviceTheConfigNamesFromItsOwnKeys) {
   auto record = std::make_shared<Record>();
-  DeviceRegistry devices;
-  add_simulated_devices(devices);
-  add_recording_device(devices, record);
+  const DeviceRegistry devices = devices_with_recording(record);
   const auto spec =
       devices.parse(leader_section("  device: recording\n  recording: {gain: 2.5, pose_rad: [0.1, 0.2]}\n"));
   EXPECT_STREQ(spec->device(), "recording");
@@ -110,9 +111,7 @@ TEST(DeviceRegistry, RefusesAnUnknownDeviceNamingTheRegisteredOnesAndTheNearest)
 
 TEST(DeviceRegistry, ChecksTheSettingsOfARegisteredDeviceTheConfigDoesNotUse) {
   auto record = std::make_shared<Record>();
-  DeviceRegistry devices;
-  add_simulated_devices(devices);
-  add_recording_device(devices, record);
+  const DeviceRegistry devices = devices_with_recording(record);
   // kept for `--set leader.device=recording`: read, so they are no unknown keys ...
   const ConfigNode root =
       ConfigNode::load_string("leader:\n  recording: {gain: 1.5, pose_rad: [0, 0]}\n", "leader.yaml");
@@ -136,9 +135,7 @@ TEST(DeviceRegistry, RefusesADeviceRegisteredTwiceAndAnEmptyRegistry) {
 // state it reports is the leader's device state
 TEST(DeviceRegistry, TheLeaderDrivesADeviceTheTestRegistered) {
   auto record = std::make_shared<Record>();
-  DeviceRegistry devices;
-  add_simulated_devices(devices);
-  add_recording_device(devices, record);
+  const DeviceRegistry devices = devices_with_recording(record);
   const ConfigNode root = ConfigNode::load_string(
       "teleoperation: {architecture: position_position}\n"
       "leader:\n"
