@@ -1,7 +1,8 @@
-#include "leader_arms.h"
+#include "teleop/leader/leader_arms.h"
 
 #include <memory>
 
+#include "leader_config.h"
 #include "leader_node.h"
 #include "teleop/runtime/arm_configs.h"
 #include "teleop/runtime/arm_group.h"
@@ -18,6 +19,9 @@ std::unique_ptr<runtime::NodeLogic> build_arms(const std::vector<LeaderConfig>& 
 
 }  // namespace
 
-runtime::LogicParser leader_logic_parser() { return runtime::arm_logic_parser(parse_leader_arms, build_arms); }
+runtime::LogicParser leader_logic_parser(const DeviceRegistry& devices) {
+  return runtime::arm_logic_parser([&devices](const ConfigNode& root) { return parse_leader_arms(root, devices); },
+                                   build_arms);
+}
 
 }  // namespace teleop::leader

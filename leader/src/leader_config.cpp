@@ -66,7 +66,7 @@ void parse_feedback(const ConfigNode& s, LeaderConfig& c) {
 
 }  // namespace
 
-LeaderConfig parse_leader_config(const ConfigNode& root) {
+LeaderConfig parse_leader_config(const ConfigNode& root, const DeviceRegistry& devices) {
   const ConfigNode s = root.child("leader");
   LeaderConfig c;
   c.joints = read_joint_count(s);
@@ -76,25 +76,9 @@ LeaderConfig parse_leader_config(const ConfigNode& root) {
   c.damping_nms_per_rad = s.get_double("damping_nms_per_rad", Range{0, 1e4}, c.damping_nms_per_rad);
   c.cartesian = parse_cartesian(s);
   c.peer_timeout_s = s.get_double("peer_timeout_ms", Range{1, 60'000}, 100) * 1e-3;
-  const std::string device = s.get_choice("device", {"scripted", "haptic_arm", "replay"}, "scripted");
-  c.device = device == "haptic_arm" ? LeaderConfig::Device::kHapticArm
-             : device == "replay"   ? LeaderConfig::Device::kReplay
-                                    : LeaderConfig::Device::kScripted;
-  if (c.device == LeaderConfig::Device::kReplay) {
-    const ConfigNode replay = s.child("replay");
-    c.replay = std::make_shared<const JointTrajectory>(
-        JointTrajectory::load_csv(replay.get_path("file"), c.joints, replay.get_string("columns", "q_dev_")));
-  }
+  c.device = devices.parse(s);
   // a two-handed station names each hand's model in leader.arms (leader_arms.cpp)
   const bool per_arm_models = s.has("arms");
-  if (auto arm = s.optional_child("haptic_arm")) {
-    if (!per_arm_models) c.haptic_arm.model.model_path = sim::get_model_path(*arm, "model");
-    c.haptic_arm.model.keyframe = arm->get_string("keyframe", "");
-    c.haptic_arm.hand_stiffness_nm_per_rad = arm->get_double("hand_stiffness_nm_per_rad", Range{0, 1e4}, c.haptic_arm.hand_stiffness_nm_per_rad);
-    c.haptic_arm.hand_damping_nms_per_rad = arm->get_double("hand_damping_nms_per_rad", Range{0, 1e3}, c.haptic_arm.hand_damping_nms_per_rad);
-  } else if (c.device == LeaderConfig::Device::kHapticArm) {
-    throw s.error("haptic_arm", "device: haptic_arm needs a haptic_arm section with the model file");
-  }
   if (s.has("arm_model")) c.arm_model = sim::get_model_path(s, "arm_model");
   c.ee_site = s.get_string("ee_site", c.ee_site);
   c.workspace_scale = s.get_double("workspace_scale", Range{0.01, 100}, c.workspace_scale);
@@ -124,7 +108,6 @@ LeaderConfig arm_config(const LeaderConfig& shared, const std::string& name, con
   c.arm = name;
   // the hand's device is mounted like the robot's arm: one model for the device and the mapping
   c.arm_model = sim::get_model_path(a, "model");
-  c.haptic_arm.model.model_path = c.arm_model;
   c.ee_site = a.get_string("ee_site");
   c.home_rad = read_joint_list(a, "home_rad", c.joints, kJointAngleRange, 0.0);
   c.motion.home_rad = c.home_rad;
@@ -138,8 +121,8 @@ LeaderConfig arm_config(const LeaderConfig& shared, const std::string& name, con
 
 }  // namespace
 
-std::vector<LeaderConfig> parse_leader_arms(const ConfigNode& root) {
-  return runtime::read_arm_configs(root.child("leader"), parse_leader_config(root), arm_config);
+std::vector<LeaderConfig> parse_leader_arms(const ConfigNode& root, const DeviceRegistry& devices) {
+  return runtime::read_arm_configs(root.child("leader"), parse_leader_config(root, devices), arm_config);
 }
 
 }  // namespace teleop::leader

@@ -15,7 +15,9 @@
 #include "hand_plan.h"
 #include "joint_trajectory.h"
 #include "operator_motion.h"
-#include "simulated_haptic_arm.h"
+#include "scripted_device.h"
+#include "teleop/leader/device_registry.h"
+#include "teleop/leader/simulated_devices.h"
 #include "teleop/runtime/architecture.h"
 
 namespace teleop::leader {
@@ -44,12 +46,9 @@ struct LeaderConfig {
   CartesianGains cartesian;
   /// Follower (or twin) silent longer than this: freeze the command and report the peer lost.
   double peer_timeout_s = 0.1;
-  /// The device: `scripted` (exactly where the operator wants it), a simulated haptic arm
-  /// pulled there by the operator's hand, feeling the feedback, or the replay of a recorded
-  /// device motion (open loop: it renders nothing).
-  enum class Device { kScripted, kHapticArm, kReplay } device = Device::kScripted;
-  HapticArmConfig haptic_arm;
-  std::shared_ptr<const JointTrajectory> replay;
+  /// The device `leader.device` names, with its settings (device_registry.h): the script itself
+  /// unless the configuration says otherwise.
+  std::shared_ptr<const DeviceSpec> device = scripted_device_spec();
   /// Model of the arm class (device and follower): Cartesian architectures and the traces.
   std::string arm_model;
   std::string ee_site = "ee_site";
@@ -69,11 +68,11 @@ struct LeaderConfig {
 std::shared_ptr<const JointTrajectory> load_recording(const ConfigNode& section, const std::string& key,
                                                      const OperatorMotionConfig& motion);
 
-/// Reads the `leader:` and `teleoperation:` sections of one hand. Throws ConfigError naming file,
-/// key and problem; loads every file it names (models, recordings) on the way.
-LeaderConfig parse_leader_config(const ConfigNode& root);
+/// Reads the `leader:` and `teleoperation:` sections of one hand, the device from `devices`. Throws
+/// ConfigError naming file, key and problem; loads every file it names (models, recordings) on the way.
+LeaderConfig parse_leader_config(const ConfigNode& root, const DeviceRegistry& devices = simulated_devices());
 
 /// One config per hand of `leader.arms`, in the file's order; a single unnamed hand without it.
-std::vector<LeaderConfig> parse_leader_arms(const ConfigNode& root);
+std::vector<LeaderConfig> parse_leader_arms(const ConfigNode& root, const DeviceRegistry& devices = simulated_devices());
 
 }  // namespace teleop::leader

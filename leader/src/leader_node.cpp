@@ -25,17 +25,8 @@ LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context
       cartesian_(config.workspace_scale),
       renderer_(config.joints, config.feedback, context.node.rate_hz) {
   const size_t n = config.joints;
-  if (config.device == LeaderConfig::Device::kHapticArm) {
-    HapticArmConfig arm = config.haptic_arm;
-    arm.model.period_s = period_s_;
-    arm.start_rad = config.home_rad;  // without a keyframe the device starts where the follower does
-    auto haptic_arm = std::make_unique<SimulatedHapticArm>(arm);
-    haptic_arm_ = haptic_arm.get();
-    device_impl_ = std::move(haptic_arm);
-  } else if (config.device == LeaderConfig::Device::kReplay) {
-    device_impl_ = std::make_unique<ReplayDevice>(*config.replay, period_s_);
-  }
-  if (device_impl_ && device_impl_->joints() != n) {
+  device_impl_ = config.device->make({period_s_, n, config.home_rad, config.arm_model});
+  if (device_impl_->joints() != n) {
     throw std::runtime_error(std::string("leader: the ") + device_impl_->name() + " device has another joint count than leader.joints");
   }
   if (!config.arm_model.empty()) {
@@ -73,10 +64,8 @@ LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context
   transport::presize_joint_state(st, n);
 
   // the device starts wherever it is; the follower's command starts at home
-  q_operator_ = config.home_rad;
   device_.q_rad = config.home_rad;
   move_device(0.0);
-  device_home_ = device_.q_rad;
   clutch_.start(device_.q_rad, config.home_rad);
   if (device_kinematics_) {
     command_kinematics_->update(config.home_rad, dq_cmd_);
@@ -126,18 +115,10 @@ void LeaderNode::update_state(int64_t now_ns) {
 }
 
 void LeaderNode::move_device(double t_s) {
-  motion_.sample(t_s, q_operator_, dq_operator_);
-  if (!device_impl_) {
-    device_.q_rad = q_operator_;
-    device_.dq_radps = dq_operator_;
-    return;
-  }
-  if (haptic_arm_) {
-    // the operator moves the device by the intended motion, from where the device started
-    for (size_t i = 0; i < config_.joints; ++i) operator_target_[i] = device_home_[i] + q_operator_[i] - config_.home_rad[i];
-    motion_.intended_torque(t_s, tau_intended_);
-    haptic_arm_->set_operator_target(operator_target_, dq_operator_, tau_intended_);
-  }
+  // the simulated operator's intent moves a simulated device; a real one is held by a person
+  motion_.sample(t_s, intent_.q_rad, intent_.dq_radps);
+  motion_.intended_torque(t_s, intent_.tau_nm);
+  device_impl_->set_operator_intent(intent_);
   if (!device_impl_->read(device_)) ++device_faults_;
 }
 
@@ -285,7 +266,7 @@ void LeaderNode::cycle(const CycleTick& tick) {
   const bool fresh = compute_feedback(tick.now_ns);
   // lost or stale source, or the follower gone: fade the feedback out, never cut it
   renderer_.render(feedback_, config_.feedback_enabled && fresh && state_ == msg::STATE_RUNNING);
-  if (device_impl_ && !device_impl_->write(renderer_.output())) ++device_faults_;
+  if (!device_impl_->write(renderer_.output())) ++device_faults_;
   publish_device_state();
   update_trace_values();
 }

@@ -20,8 +20,7 @@
 #include "feedback_renderer.h"
 #include "leader_config.h"
 #include "operator_motion.h"
-#include "replay_device.h"
-#include "simulated_haptic_arm.h"
+#include "teleop/leader/leader_device.h"
 #include "teleop/runtime/node_runner.h"
 #include "teleop/runtime/architecture.h"
 #include "teleop/runtime/command_authority.h"
@@ -79,18 +78,13 @@ class LeaderNode final : public runtime::NodeLogic {
   transport::Subscription<msg::JointTorque> twin_feedback_;
   std::optional<runtime::TdpaLink> tdpa_;
   std::optional<runtime::CommandAuthority> authority_;
-  std::unique_ptr<LeaderDevice> device_impl_;  // none: the scripted device
-  SimulatedHapticArm* haptic_arm_ = nullptr;     // device_impl_ when it is the haptic arm
+  std::unique_ptr<LeaderDevice> device_impl_;  // the one leader.device names
   std::unique_ptr<ArmKinematics> device_kinematics_;
   std::unique_ptr<ArmKinematics> command_kinematics_;
   OperatorMotion motion_;
   msg::NodeState state_ = msg::STATE_STARTING;
-  JointVector q_operator_{};
-  JointVector dq_operator_{};
-  JointVector operator_target_{};
-  JointVector tau_intended_{};  // the torque the operator adds on purpose (e.g. a squeeze)
+  OperatorIntent intent_{};  // the simulated operator's, given to the device every cycle
   DeviceState device_{};
-  JointVector device_home_{};
   JointVector q_cmd_{};
   JointVector dq_cmd_{};
   JointVector feedback_{};

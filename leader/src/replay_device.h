@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "joint_trajectory.h"
-#include "leader_device.h"
+#include "teleop/leader/leader_device.h"
 
 namespace teleop::leader {
 

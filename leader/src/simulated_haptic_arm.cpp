@@ -9,6 +9,14 @@ SimulatedHapticArm::SimulatedHapticArm(const HapticArmConfig& config) : config_(
   if (arm_.read(measured_) != robot::HardwareStatus::kOk) throw std::runtime_error("the simulated haptic arm cannot be read");
   // the operator starts by holding the device where it is
   target_q_ = measured_.q_rad;
+  start_q_rad_ = measured_.q_rad;
+}
+
+void SimulatedHapticArm::set_operator_intent(const OperatorIntent& intent) {
+  for (size_t i = 0; i < arm_.joints(); ++i) {
+    intent_target_[i] = start_q_rad_[i] + intent.q_rad[i] - config_.start_rad[i];
+  }
+  set_operator_target(intent_target_, intent.dq_radps, intent.tau_nm);
 }
 
 void SimulatedHapticArm::set_operator_target(const JointVector& q_rad, const JointVector& dq_radps,

@@ -8,7 +8,7 @@
 #include <memory>
 
 #include "teleop/robot/mujoco_hardware.h"
-#include "leader_device.h"
+#include "teleop/leader/leader_device.h"
 
 namespace teleop::leader {
 
@@ -17,7 +17,8 @@ struct HapticArmConfig {
   /// The operator's grip: joint stiffness [Nm/rad] and damping [Nm s/rad] of the hand.
   double hand_stiffness_nm_per_rad = 60.0;
   double hand_damping_nms_per_rad = 4.0;
-  /// Where the device starts when the model's keyframe is not given [rad].
+  /// The script's home [rad]: where the device starts when the model's keyframe is not given, and
+  /// what the operator's intent is measured from (set_operator_intent).
   JointVector start_rad{};
 };
 
@@ -28,6 +29,9 @@ class SimulatedHapticArm final : public LeaderDevice {
   /// Where the operator pulls the device (joint space), and the torque the operator adds on
   /// purpose on top of the hand's spring-damper. Real-time safe.
   void set_operator_target(const JointVector& q_rad, const JointVector& dq_radps, const JointVector& intended_nm);
+  /// The operator moves the device by the intended motion from where the device started (a
+  /// keyframe's pose stands for the script's home, start_rad). Real-time safe.
+  void set_operator_intent(const OperatorIntent& intent) override;
 
   size_t joints() const override { return arm_.joints(); }
   [[nodiscard]] bool read(DeviceState& state) override;
@@ -38,6 +42,8 @@ class SimulatedHapticArm final : public LeaderDevice {
   HapticArmConfig config_;
   robot::MujocoHardware arm_;
   robot::ArmState measured_{};
+  JointVector start_q_rad_{};
+  JointVector intent_target_{};
   JointVector target_q_{};
   JointVector target_dq_{};
   JointVector intended_nm_{};

@@ -1,0 +1,42 @@
+#pragma once
+// The operator's input device behind an interface: a torque-controlled arm used as master that
+// reports its joint state and renders feedback torques. The leader's node sees only this; which
+// device it drives is chosen in the configuration (`leader.device`) from a DeviceRegistry
+// (device_registry.h). Implementations: the script itself, a simulated haptic arm pulled by a
+// simulated operator, the replay of a recording (simulated_devices.h); a real device plugs in here.
+
+#include "teleop/common/joint_model.h"
+
+namespace teleop::leader {
+
+struct DeviceState {
+  JointVector q_rad{};
+  JointVector dq_radps{};
+  /// The torque the operator applies to the device, where known (simulation), else 0.
+  JointVector tau_operator_nm{};
+};
+
+/// What the simulated operator (leader.motion) wants this period: where the device should be, in
+/// the script's joint space (about leader.home_rad), and the torque the operator adds on purpose.
+struct OperatorIntent {
+  JointVector q_rad{};
+  JointVector dq_radps{};
+  JointVector tau_nm{};
+};
+
+class LeaderDevice {
+ public:
+  virtual ~LeaderDevice() = default;
+  virtual size_t joints() const = 0;
+  /// The simulated operator's intent for the coming period, given before read(). A simulated
+  /// device moves by it; a real device, held by a real operator, ignores it (the default).
+  /// Real-time safe.
+  virtual void set_operator_intent(const OperatorIntent& intent) { (void)intent; }
+  /// Real-time safe. False when the device cannot be read.
+  [[nodiscard]] virtual bool read(DeviceState& state) = 0;
+  /// Renders `feedback_nm` for the next period. Real-time safe. False when refused.
+  [[nodiscard]] virtual bool write(const JointVector& feedback_nm) = 0;
+  virtual const char* name() const = 0;
+};
+
+}  // namespace teleop::leader
