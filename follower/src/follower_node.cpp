@@ -58,9 +58,9 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<robot::
       wrench_pub_(context.participant, transport::arm_topic(transport::topics::kFollowerWrench, config.arm),
                   context.node.name),
       reflex_(config.reflex),
+      brake_(config.reflex.brake_share_per_cycle, 1.0 / context.node.rate_hz),
       rejoin_(config.joints, config.rejoin_speed_radps, 1.0 / context.node.rate_hz),
-      stall_watch_(static_cast<int64_t>(config.command_timeout_s * 1e9)),
-      cycle_s_(1.0 / context.node.rate_hz) {
+      stall_watch_(static_cast<int64_t>(config.command_timeout_s * 1e9)) {
   if (hardware_->joints() != config.joints) {
     throw std::runtime_error("follower.joints is " + std::to_string(config.joints) + " but the robot (" +
                              hardware_->name() + ") has " + std::to_string(hardware_->joints()) + " joints");
@@ -196,14 +196,8 @@ void FollowerNode::run_reflex() {
   // tripped: stop moving into the contact, yield to it, and tell the operator
   state_ = msg::STATE_SAFE_HOLD;
   const SafetyReflexConfig& r = reflex_.config();
+  // a contact is yielded to; a joint too fast is also braked to a stop (command_torque)
   hold_current_pose(reflex_hold_, r.hold_stiffness_nm_per_rad, r.hold_damping_nms_per_rad);
-  // a contact is yielded to; a joint too fast is braked to a stop, each as hard as it stays stable
-  if (reflex_.last_cause() == ReflexCause::kJointVelocity) {
-    for (size_t i = 0; i < config_.joints; ++i) {
-      const auto k = static_cast<Eigen::Index>(i);
-      reflex_hold_.damping[i] = std::max(r.hold_damping_nms_per_rad, r.brake_share_per_cycle * control_.mass()(k, k) / cycle_s_);
-    }
-  }
   if (passive_) passive_->reset();
 }
 
@@ -221,7 +215,11 @@ void FollowerNode::apply_passivity() {
 }
 
 void FollowerNode::command_torque(const ValidCommand& command) {
-  const control::JointVector& tau = control_.compute(arm_, command);
+  control::JointVector tau = control_.compute(arm_, command);
+  if (reflex_.latched() && reflex_.last_cause() == ReflexCause::kJointVelocity) {
+    const auto dq = Eigen::Map<const control::JointVector>(arm_.dq_radps.data());
+    brake_.apply(control_.mass(), dq, validator_.limits().max_torque_nm, tau);
+  }
   const bool subtract_gravity = hardware_->compensates_gravity();
   for (size_t i = 0; i < config_.joints; ++i) total_nm_[i] = tau[static_cast<Eigen::Index>(i)];
   // saturation and rate limit act on what the drives produce: the total torque; a latched

@@ -246,6 +246,28 @@ TEST_F(FollowerNodeTest, ClampsAndSaturatesAFarTargetWithoutExceedingAnyJointTor
   EXPECT_GT(counter("torque_rate_limited"), 0.0);
 }
 
+TEST_F(FollowerNodeTest, ASpeedTripBrakesTheArmToAStopAndItStaysThere) {
+  // a stiff far command swings the arm past its speed limits; the rejoin would keep it calm
+  config.rejoin_speed_radps = 10.0;
+  start();
+  leader->command.sample().stiffness_nm_per_rad().assign(kJoints, 1e6);
+  const mjData* d = sim->simulation().data();
+  int cycles = 0;
+  for (; cycles < 2000 && counter("reflex_trips") == 0.0; ++cycles) step(1.5);
+  ASSERT_EQ(counter("reflex_cause"), 4.0) << "a joint speed tripped the reflex";
+  // the brake: within 0.3 s every joint is at rest (the compliant hold alone coasts for seconds)
+  for (int i = 0; i < 300; ++i) step(1.5);
+  double fastest = 0.0;
+  for (size_t j = 0; j < kJoints; ++j) fastest = std::max(fastest, std::abs(d->qvel[j]));
+  EXPECT_LT(fastest, 0.02);
+  // and it stays where it stopped: no wandering along the null space, no saturated chatter
+  std::array<double, kJoints> stopped{};
+  std::copy_n(d->qpos, kJoints, stopped.begin());
+  for (int i = 0; i < 1000; ++i) step(1.5);
+  for (size_t j = 0; j < kJoints; ++j) EXPECT_NEAR(d->qpos[j], stopped[j], 0.01) << "joint " << j;
+  EXPECT_EQ(counter("reflex_latched"), 1.0);
+}
+
 TEST_F(FollowerNodeTest, SwitchesToCartesianImpedanceWithoutATorqueStepAndReachesTheTarget) {
   for (int i = 0; i < 300; ++i) step(0.0);
   const double rate_limited = counter("torque_rate_limited");

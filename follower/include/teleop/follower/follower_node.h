@@ -12,6 +12,7 @@
 #include "teleop/common/stall_watch.h"
 #include "teleop/follower/arm_control.h"
 #include "teleop/follower/safety_reflex.h"
+#include "teleop/follower/speed_brake.h"
 #include "teleop/follower/follower_config.h"
 #include "teleop/follower/joint_rejoin.h"
 #include "teleop/follower/passive_reference.h"
@@ -88,6 +89,7 @@ class FollowerNode final : public runtime::NodeLogic {
   ValidCommand corrected_{};
   const ValidCommand* controlled_ = &active_;
   SafetyReflex reflex_;
+  SpeedBrake brake_;
   ValidCommand reflex_hold_{};
   JointRejoin rejoin_;
   JointVector held_q_rad_{};
@@ -109,7 +111,6 @@ class FollowerNode final : public runtime::NodeLogic {
   // why the robot holds (msg::FAULT_*), while it holds
   uint32_t hold_cause_ = msg::FAULT_STALE_INPUT;
   StallWatch stall_watch_;
-  double cycle_s_;
   uint64_t liveliness_trips_ = 0;
   double watchdog_latency_max_s_ = 0.0;
   uint64_t hardware_faults_ = 0;

@@ -32,9 +32,9 @@ struct SafetyReflexConfig {
   double hold_damping_nms_per_rad = 5.0;
   /// After a joint-speed trip the arm is braked to a stop, not left to coast in the compliant
   /// hold (measured: a huge-gain command's limit cycle tripped at 2.5 rad/s towards the wall, and
-  /// the compliant hold let it hit the wall with up to 1.8 kN): each joint's damping takes this
-  /// share of its speed per cycle, D_i = share * M_ii / cycle (M: the arm's inertia at the trip),
-  /// as hard as an explicit 1 kHz damper stays stable; the torque limits bound it.
+  /// the compliant hold let it hit the wall with up to 1.8 kN): the brake takes this share of the
+  /// arm's velocity per cycle, tau = -(share / cycle) M(q) dq (speed_brake.h), within the torque
+  /// limits.
   double brake_share_per_cycle = 0.2;
 
   static JointVector filled(double rest, std::initializer_list<double> first);
