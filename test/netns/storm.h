@@ -27,6 +27,8 @@ struct StormResult {
   runtime::NodeReport follower;
   runtime::NodeReport leader;
   int churn_rounds = 0;       ///< rounds of joining and leaving the churn completed
+  /// The churn's last run was still deleting its participants well after the storm and was killed.
+  bool churn_killed_after_the_storm = false;
   int readers_reporting = 0;  ///< readers that printed a rate line (they received samples)
   std::string outputs;        ///< every process's output, for failure messages
 };
