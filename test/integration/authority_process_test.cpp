@@ -28,14 +28,7 @@ using namespace std::chrono_literals;
 // the shipped leader's joint 0 stays at 0; the rogue holds it at 0.3 rad
 constexpr double kRogueJoint0Rad = 0.3;
 
-struct Site {
-  std::string dir = make_temp_dir();
-  int domain = unique_domain();
-
-  std::vector<std::string> args(const std::string& node, const std::string& config, const std::string& tag) const {
-    return {bin("teleop_" + node), "--config", config, "--domain", std::to_string(domain), "--report",
-            dir + "/" + tag + ".yaml", "--trace", dir + "/" + tag + ".csv", "--trace-seconds", "60"};
-  }
+struct Site : ProcessSite {
   // a config of its own folder per node: copies of one shipped file would overwrite each other
   std::string config(const std::string& shipped, const std::vector<std::pair<std::string, std::string>>& edits) const {
     const std::string own = make_temp_dir();
@@ -53,8 +46,8 @@ struct Site {
                                   {"amplitudes_rad: [0.0, 0.2, 0.0, 0.2, 0.0, 0.0, 0.0]",
                                    "amplitudes_rad: [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]"}});
   }
-  runtime::NodeReport report(const std::string& tag) const { return runtime::read_report(dir + "/" + tag + ".yaml"); }
-  experiment::Trace trace(const std::string& tag) const { return experiment::read_trace(dir + "/" + tag + ".csv"); }
+  runtime::NodeReport report(const std::string& tag) const { return runtime::read_report(report_path(tag)); }
+  experiment::Trace trace(const std::string& tag) const { return experiment::read_trace(trace_path(tag)); }
 };
 
 const runtime::ReceivedTopic& received(const runtime::NodeReport& r, const std::string& topic) {

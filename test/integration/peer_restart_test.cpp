@@ -26,22 +26,7 @@ using namespace std::chrono_literals;
 
 constexpr int kRestarts = 5;
 
-struct Site {
-  std::string dir = make_temp_dir();
-  int domain = unique_domain();
-  std::vector<std::string> args(const std::string& node, const std::string& config, const std::string& tag) const {
-    return {bin("teleop_" + node),
-            "--config",
-            config,
-            "--domain",
-            std::to_string(domain),
-            "--report",
-            dir + "/" + tag + ".yaml",
-            "--trace",
-            dir + "/" + tag + ".csv",
-            "--trace-seconds",
-            "60"};
-  }
+struct Site : ProcessSite {
   // the shipped leader, swinging the flange along the wall, not into it
   std::string leader_clear_of_the_wall() const {
     return config_copy(dir, "leader.yaml",
@@ -161,7 +146,7 @@ TEST(PeerRestart, TheFollowerFollowsEachRestartedLeaderFromItsFirstCommandAndApp
   }
   ASSERT_EQ(follower.stop(SIGTERM, 10s), 0) << follower.output();
 
-  const auto report = runtime::read_report(site.dir + "/follower.yaml");
+  const auto report = runtime::read_report(site.report_path("follower"));
   EXPECT_EQ(counter(report, "command_sessions"), kRestarts + 1.0);
   EXPECT_EQ(counter(report, "rejected_old_sequence"), 0.0) << "no leader's commands were measured against another's";
   EXPECT_EQ(report.final_state, "safe_hold") << "the last leader was killed";
@@ -171,7 +156,7 @@ TEST(PeerRestart, TheFollowerFollowsEachRestartedLeaderFromItsFirstCommandAndApp
   EXPECT_EQ(received->sessions, kRestarts + 1u);
   EXPECT_LE(received->lost, received->expected) << "statistics stay truthful over the sessions";
 
-  const experiment::Trace trace = experiment::read_trace(site.dir + "/follower.csv");
+  const experiment::Trace trace = experiment::read_trace(site.trace_path("follower"));
   expect_each_session_resumed(rejoins(trace, "cmd_session"), kRestarts + 1, "follower");
   // a stale command: one of an earlier leader (a lower session), or an older one of the same
   // leader, in force while running
@@ -205,9 +190,9 @@ TEST(PeerRestart, TheLeaderFollowsEachRestartedFollowerFromItsFirstState) {
   }
   ASSERT_EQ(leader.stop(SIGTERM, 10s), 0) << leader.output();
 
-  const auto report = runtime::read_report(site.dir + "/leader.yaml");
+  const auto report = runtime::read_report(site.report_path("leader"));
   EXPECT_EQ(report.final_state, "safe_hold") << "the last follower was killed";
-  const experiment::Trace trace = experiment::read_trace(site.dir + "/leader.csv");
+  const experiment::Trace trace = experiment::read_trace(site.trace_path("leader"));
   expect_each_session_resumed(rejoins(trace, "peer_session"), kRestarts + 1, "leader");
 }
 
@@ -244,7 +229,7 @@ TEST(PeerRestart, AForgedMaximalSequenceNumberChangesNothingForTheLeaderFollowed
   ASSERT_EQ(follower.stop(SIGTERM, 10s), 0) << follower.output();
   ASSERT_EQ(leader.stop(SIGTERM, 10s), 0) << leader.output();
 
-  const auto report = runtime::read_report(site.dir + "/follower.yaml");
+  const auto report = runtime::read_report(site.report_path("follower"));
   EXPECT_EQ(report.final_state, "running");
   EXPECT_EQ(counter(report, "watchdog_trips"), 0.0) << "the leader's commands were taken throughout";
   EXPECT_EQ(counter(report, "command_sessions"), 1.0);
@@ -255,7 +240,7 @@ TEST(PeerRestart, AForgedMaximalSequenceNumberChangesNothingForTheLeaderFollowed
   EXPECT_GT(received->refused_other_writer, 0u) << "the forged samples arrived and were refused";
   EXPECT_LE(received->refused_other_writer, 50u);
   EXPECT_LT(received->expected, 1'000'000u) << "statistics stay truthful";
-  const experiment::Trace trace = experiment::read_trace(site.dir + "/follower.csv");
+  const experiment::Trace trace = experiment::read_trace(site.trace_path("follower"));
   const auto& session = trace.column("cmd_session");
   EXPECT_EQ(*std::max_element(session.begin(), session.end()), 1.0) << "the forger never took over";
 }

@@ -49,6 +49,21 @@ std::string read_file(const std::string& path) {
   return buffer.str();
 }
 
+std::vector<std::string> ProcessSite::args(const std::string& node, const std::string& config,
+                                           const std::string& tag) const {
+  return {bin("teleop_" + node),
+          "--config",
+          config,
+          "--domain",
+          std::to_string(domain),
+          "--report",
+          report_path(tag),
+          "--trace",
+          trace_path(tag),
+          "--trace-seconds",
+          "60"};
+}
+
 ProcessResult run_process(const std::vector<std::string>& argv, std::chrono::seconds timeout) {
   RunningProcess p(argv);
   const auto until = std::chrono::steady_clock::now() + timeout;

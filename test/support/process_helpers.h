@@ -32,6 +32,17 @@ std::string read_file(const std::string& path);
 std::string config_copy(const std::string& dir, const std::string& name,
                         const std::vector<std::pair<std::string, std::string>>& edits);
 
+/// One process test's folder and domain: every node started with args() writes its report and
+/// trace there under its tag, and no other test's nodes share the domain.
+struct ProcessSite {
+  std::string dir = make_temp_dir();
+  int domain = unique_domain();
+  /// `teleop_<node> --config <config> --domain <domain>`, report and trace under `tag`.
+  std::vector<std::string> args(const std::string& node, const std::string& config, const std::string& tag) const;
+  std::string report_path(const std::string& tag) const { return dir + "/" + tag + ".yaml"; }
+  std::string trace_path(const std::string& tag) const { return dir + "/" + tag + ".csv"; }
+};
+
 struct ProcessResult {
   std::optional<int> exit_status;  ///< nullopt: still running at the timeout, then killed
   std::string output;              ///< stdout and stderr
