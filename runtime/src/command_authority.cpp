@@ -27,9 +27,9 @@ CommandAuthority::CommandAuthority(transport::Participant& participant, const Wr
     : self_(self.hex()),
       command_topic_(std::move(command_topic)),
       events_(&participant.events()),
-      statuses_(participant.make_reader(
-          transport::topics::kNodeStatus,
-          std::function<void(const msg::NodeStatus&)>([this](const msg::NodeStatus& s) { judge(s); }))) {
+      statuses_(participant.make_reader(transport::topics::kNodeStatus,
+                                        gate_.guard(std::function<void(const msg::NodeStatus&)>(
+                                            [this](const msg::NodeStatus& s) { judge(s); })))) {
   self_name_.assign(self_name);
 }
 

@@ -19,6 +19,7 @@
 #include "teleop/common/fixed_text.h"
 #include "teleop/common/node_event.h"
 #include "teleop/common/stream_session.h"
+#include "teleop/transport/callback_gate.h"
 #include "teleop/transport/participant.h"
 #include "teleop/transport/reader.h"
 
@@ -43,6 +44,10 @@ class CommandAuthority {
   /// `self_name`: this node's name (what a taker that does not accept it names).
   CommandAuthority(transport::Participant& participant, const WriterId& self, const std::string& self_name,
                    std::string command_topic);
+  /// Waits for a status being judged on Fast DDS's thread; no status is judged after.
+  ~CommandAuthority() { gate_.close(); }
+  CommandAuthority(const CommandAuthority&) = delete;
+  CommandAuthority& operator=(const CommandAuthority&) = delete;
 
   /// Sums up what the takers said, at `now_mono_ns`, and logs a change. Loop: real-time safe.
   void poll(int64_t now_mono_ns);
@@ -84,6 +89,7 @@ class CommandAuthority {
   CommandRefusal reported_ = CommandRefusal::kNoTaker;
   FixedText<32> taker_;
   FixedText<32> detail_;
+  transport::CallbackGate gate_;  // closed first when this goes: judge() never outlives it
   transport::Reader<msg::NodeStatus> statuses_;  // last: its thread may call judge() at once
 };
 
