@@ -38,7 +38,16 @@ struct Site : ProcessSite {
     if (bound) return config("follower.yaml", {});
     return config("follower.yaml", {{"  accept_commands_from: [leader, twin]\n", ""}});
   }
-  std::string leader() const { return config("leader.yaml", {}); }
+  // the shipped operator, slowly and clear of the wall: authority is the subject here. The
+  // simulated arm moves one period per cycle it runs while commands come in wall time, so a
+  // follower starved on a slow host (ASan: 2-8 ms late per cycle) sees the operator's motion
+  // fast-forwarded; the shipped 0.5 Hz press then tripped its speed reflex after a stall, and
+  // the latched reflex held it (ReflexProcess is about that)
+  std::string leader() const {
+    return config("leader.yaml", {{"amplitudes_rad: [0.0, 0.2, 0.0, 0.2, 0.0, 0.0, 0.0]",
+                                   "amplitudes_rad: [0.0, 0.0, 0.0, 0.0, 0.3, 0.0, 0.3]"},
+                                  {"frequency_hz: 0.5", "frequency_hz: 0.1"}});
+  }
   // another operator on the same domain: holds joint 0 at 0.3 rad, nothing else moves
   std::string rogue() const {
     return config("leader.yaml", {{"name: leader", "name: rogue"},

@@ -208,6 +208,13 @@ TEST(PeerRestart, AForgedMaximalSequenceNumberChangesNothingForTheLeaderFollowed
   // a writer of its own, on an unsecured domain: a well-formed command to somewhere else, with
   // the largest sequence number, sent for 50 cycles
   transport::Writer<msg::JointCommand> forger = observer.make_writer(transport::topics::kLeaderCommand);
+  // matched by the follower (and the watch beside it) before it writes: a sample written before
+  // discovery reaches nobody (a slow follower, as under ASan, matched after all 50)
+  for (const auto until = std::chrono::steady_clock::now() + 30s;
+       forger.matched() < 2 && std::chrono::steady_clock::now() < until;) {
+    follower.run_for(10ms);
+  }
+  ASSERT_GE(forger.matched(), 2) << follower.output();
   msg::JointCommand forged;
   forged.robot("follower");
   forged.mode().assign(7, msg::CONTROL_JOINT_IMPEDANCE);
