@@ -2,7 +2,8 @@
 // another lab's nodes starting and stopping on the same network would (franka_ros2 #201: a 1 kHz
 // loop broken by another machine's nodes starting). Each participant reads the follower's state,
 // wrench and status, so that every join is matched by the follower's writers and every leave
-// unmatched. Prints one line per round: "round N: P participants up". Exits 0 when done.
+// unmatched. Prints "joined churn_I" as each participant is up (on a starved host a round can take
+// longer than a storm) and "round N: P participants up" once a round's are. Exits 0 when done.
 #include <CLI/CLI.hpp>
 
 #include <chrono>
@@ -45,6 +46,8 @@ int run(int domain, int participants, double duration_s, int up_ms, int down_ms)
       // (PDP::check_remote_participant_liveliness, docs/reliability.md)
       c.participant_lease_ns = 20'000'000'000;
       up.push_back(std::make_unique<Visitor>(c));
+      std::printf("joined %s\n", c.name.c_str());
+      std::fflush(stdout);
     }
     std::printf("round %d: %d participants up\n", round, participants);
     std::fflush(stdout);

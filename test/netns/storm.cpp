@@ -63,13 +63,14 @@ bool storm_program_ended(NetnsNodes& nodes, const std::string& name, std::initia
   return true;
 }
 
-int churn_rounds(NetnsNodes& nodes, int churn_runs) {
-  int rounds = 0;
-  for (int run = 0; run < churn_runs; ++run) {
-    rounds += count_lines_with(nodes.process(churn_name(run)).output(), "participants up");
-  }
-  return rounds;
+// lines with `what` in the output of all churn runs
+int churn_lines_with(NetnsNodes& nodes, int churn_runs, const std::string& what) {
+  int lines = 0;
+  for (int run = 0; run < churn_runs; ++run) lines += count_lines_with(nodes.process(churn_name(run)).output(), what);
+  return lines;
 }
+
+int churn_rounds(NetnsNodes& nodes, int churn_runs) { return churn_lines_with(nodes, churn_runs, "participants up"); }
 
 // The churn for options.seconds, until its last run ended. A run that Fast DDS aborted in its
 // removal race (readers leaving while thirty participants are created can set it off before the
@@ -98,7 +99,7 @@ std::string churn_for(NetnsNodes& nodes, const StormOptions& options, int& runs,
     if (*status == 0) return {};
     if (!aborted_by_fast_dds_removal_race(nodes.process(name))) return name + " failed";
     ++result.storm_processes_aborted;
-    if (runs == kMaxRuns || (left_s() < 2 && churn_rounds(nodes, runs) > 0)) return {};
+    if (runs == kMaxRuns || (left_s() < 2 && churn_lines_with(nodes, runs, "joined churn_") > 0)) return {};
     start_churn(nodes, options, runs++, std::max(left_s(), 1.0));
   }
 }
@@ -150,6 +151,7 @@ StormResult run_storm(const StormOptions& options) {
   result.leader = nodes.report("leader");
   if (options.storm) {
     result.churn_rounds = churn_rounds(nodes, churn_runs);
+    result.participants_joined = churn_lines_with(nodes, churn_runs, "joined churn_");
     for (int i = 0; i < options.readers; ++i) {
       result.readers_reporting += nodes.process("reader_" + std::to_string(i)).output().find(": rate ") != std::string::npos;
     }
@@ -169,7 +171,7 @@ std::string describe(const StormResult& r) {
     out << "  wrote " << p.topic << ": " << p.sent << " sent, " << p.failed << " failed, write p99 "
         << p.write_p99_ns * 1e-3 << " us max " << p.write_max_ns * 1e-3 << " us\n";
   }
-  out << "  churn rounds " << r.churn_rounds << ", readers receiving " << r.readers_reporting
+  out << "  churn rounds " << r.churn_rounds << " (" << r.participants_joined << " participants joined), readers receiving " << r.readers_reporting
       << ", storm processes aborted by Fast DDS's removal race " << r.storm_processes_aborted
       << (r.churn_killed_after_the_storm ? ", the churn killed in its last round after the storm" : "");
   return out.str();

@@ -27,6 +27,7 @@ struct StormResult {
   runtime::NodeReport follower;
   runtime::NodeReport leader;
   int churn_rounds = 0;       ///< rounds of joining and leaving the churn completed
+  int participants_joined = 0;  ///< the churn's participants that were up (a starved round is partial)
   /// The churn's last run was still deleting its participants well after the storm and was killed.
   bool churn_killed_after_the_storm = false;
   int readers_reporting = 0;  ///< readers that printed a rate line (they received samples)
