@@ -45,14 +45,17 @@ struct ScriptedCommander {
   test::ArrivalProbe<msg::JointCommand> joint_arrived;
   test::ArrivalProbe<msg::CartesianCommand> cartesian_arrived;
   test::ArrivalProbe<msg::TdpaEnergy> tdpa_arrived;
+  test::DeliveryFence fence;
 
   ScriptedCommander(transport::Participant& peer, transport::Participant& node, bool twin)
-      : joint(peer, twin ? transport::topics::kTwinCommand : transport::topics::kLeaderCommand, twin ? "twin" : "leader"),
+      : joint(peer, twin ? transport::topics::kTwinCommand : transport::topics::kLeaderCommand,
+              twin ? "twin" : "leader"),
         cartesian(peer, transport::topics::kLeaderCartesian, "leader"),
         tdpa(peer, transport::topics::kTdpaLeaderToFollower, "leader"),
         joint_arrived(node, twin ? transport::topics::kTwinCommand : transport::topics::kLeaderCommand),
         cartesian_arrived(node, transport::topics::kLeaderCartesian),
-        tdpa_arrived(node, transport::topics::kTdpaLeaderToFollower) {
+        tdpa_arrived(node, transport::topics::kTdpaLeaderToFollower),
+        fence(peer, node) {
     auto& j = joint.sample();
     j.robot("follower");
     j.mode().assign(kJoints, msg::CONTROL_JOINT_IMPEDANCE);
@@ -127,8 +130,12 @@ uint64_t run(const std::string& architecture) {
   const bool twin = architecture == "mmt";
   const bool cartesian = architecture == "pfc" || architecture == "pfc_tdpa";
   ScriptedCommander commander{harness.peer, harness.node_participant, twin};
+  // each stream reaches two readers in the node's participant, the node's and the probe: both matched
+  // before the first command, or the node might miss it
   EXPECT_TRUE(test::eventually([&] {
-    return (cartesian ? commander.cartesian.matched() > 0 && commander.tdpa.matched() > 0 : commander.joint.matched() > 0);
+    if (!commander.fence.matched()) return false;
+    return cartesian ? commander.cartesian.matched() >= 2 && commander.tdpa.matched() >= 2
+                     : commander.joint.matched() >= 2;
   }));
   std::vector<std::string> columns;
   node.trace_columns(columns);
@@ -146,13 +153,16 @@ uint64_t run(const std::string& architecture) {
     }
     if (k > 0 && cartesian) commander.send_cartesian(k, x0, r0);
     if (k > 0 && !cartesian) commander.send_joint(k, home, twin);
-    test::delivery_margin();
+    if (!commander.fence.pass()) {
+      ADD_FAILURE() << "the fence of cycle " << k << " did not arrive";
+      return 0;
+    }
     node.cycle(harness.tick());
     node.trace_row(row.data());
     hash.add(row);
   }
-  std::printf("%s: %llu rows, trace hash 0x%016llx\n", architecture.c_str(), static_cast<unsigned long long>(hash.rows()),
-              static_cast<unsigned long long>(hash.value()));
+  std::printf("%s: %llu rows, trace hash 0x%016llx\n", architecture.c_str(),
+              static_cast<unsigned long long>(hash.rows()), static_cast<unsigned long long>(hash.value()));
   return hash.value();
 }
 

@@ -3,10 +3,9 @@
 // every run: the peer's inputs of a cycle are in the node's readers before the node cycles, so no
 // cycle depends on when UDP delivered (intra-process delivery is off, transport/qos_profile_loader.cpp).
 //
-// Arrival is seen by a probe: a reader of the same topic in the node's own participant. A
-// participant hands each datagram to all its matched readers in one pass of its receive thread,
-// so once the probe has a sample the node's reader has it too, or within microseconds; the
-// margin after the probe covers that. The trace is folded into a 64-bit FNV-1a hash of the
+// Arrival is seen by a probe, a reader of the same topic in the node's own participant (a lost
+// datagram is sent again), and then made sure of for the node's own readers by a fence
+// (DeliveryFence, below). The trace is folded into a 64-bit FNV-1a hash of the
 // rows' bytes, so a golden hash taken before a refactoring tells whether it changed a bit.
 
 #include <chrono>
@@ -14,12 +13,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <string>
 #include <span>
+#include <string>
+#include <string_view>
 #include <thread>
 
 #include "node_harness.h"
+#include "teleop/transport/reader.h"
 #include "teleop/transport/subscription.h"
+#include "teleop/transport/topics.h"
 
 namespace teleop::test {
 
@@ -56,8 +58,37 @@ bool deliver(transport::Publication<T>& publication, ArrivalProbe<T>& probe) {
   return false;
 }
 
-/// Time for the node's own readers after the probe saw a sample (same receive pass, see above).
-inline void delivery_margin() { std::this_thread::sleep_for(std::chrono::microseconds(300)); }
+/// Makes sure the node's readers have what its probes have. The samples of the peer reach the
+/// node's participant on one socket, handled in order by one receive thread, each datagram handed
+/// to every matched reader before the next: a reliable sample sent after them (a NodeStatus of no
+/// flows, which no node acts on) is seen by a reader of the node's participant only once every
+/// reader there has the samples sent before it.
+class DeliveryFence {
+ public:
+  DeliveryFence(transport::Participant& peer, transport::Participant& node)
+      : fence_(peer, transport::topics::kNodeStatus, "lockstep_fence"),
+        seen_(node.make_reader(transport::topics::kNodeStatus)) {}
+  bool matched() const { return fence_.matched() > 0; }
+  /// Sends a fence and waits until it arrived (false after 5 s).
+  bool pass() {
+    if (!fence_.publish()) return false;
+    return eventually(
+        [&] {
+          while (seen_.take_next(sample_)) {
+            if (std::string_view(sample_.header().source().c_str()) == "lockstep_fence" &&
+                sample_.header().seq() == fence_.sent())
+              return true;
+          }
+          return false;
+        },
+        std::chrono::seconds(5));
+  }
+
+ private:
+  transport::Publication<msg::NodeStatus> fence_;
+  transport::Reader<msg::NodeStatus> seen_;
+  msg::NodeStatus sample_;
+};
 
 /// 64-bit FNV-1a over the bytes of trace rows: equal hashes, equal traces (to the bit). With
 /// TELEOP_LOCKSTEP_DUMP=DIR the rows also go to DIR/<name>.txt in hex floats, to find the first
@@ -65,7 +96,8 @@ inline void delivery_margin() { std::this_thread::sleep_for(std::chrono::microse
 class TraceHash {
  public:
   explicit TraceHash(const std::string& name) {
-    if (const char* dir = std::getenv("TELEOP_LOCKSTEP_DUMP")) dump_ = std::fopen((std::string(dir) + "/" + name + ".txt").c_str(), "w");
+    if (const char* dir = std::getenv("TELEOP_LOCKSTEP_DUMP"))
+      dump_ = std::fopen((std::string(dir) + "/" + name + ".txt").c_str(), "w");
   }
   ~TraceHash() {
     if (dump_ != nullptr) std::fclose(dump_);
