@@ -75,7 +75,7 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<robot::
   hold_current_pose(active_, config_.hold_stiffness_nm_per_rad, config_.hold_damping_nms_per_rad);
   limiter_.reset(arm_.tau_measured_nm);
   // the leader commands one of the two streams: the other is not waited for
-  const bool cartesian = config.teleoperation && runtime::is_cartesian(config.teleoperation->architecture);
+  const bool cartesian = config.teleoperation && runtime::is_cartesian(*config.teleoperation->architecture);
   if (cartesian) {
     joint_commands_.mark_optional();
   } else {
@@ -85,7 +85,7 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<robot::
   cartesian_commands_.accept_only(config.accept_commands_from);
   if (cartesian) {
     // pfc observes its energy balance too, only pfc_tdpa corrects it
-    const bool correct = config.teleoperation->architecture == runtime::Architecture::kPfcTdpa;
+    const bool correct = config.teleoperation->architecture->tdpa_corrects;
     const double h = 1.0 / context.node.rate_hz;
     tdpa_.emplace(context.participant, context.node.name, config.arm, runtime::TdpaEnd::kFollower, 6, h, correct,
                   config.teleoperation->tdpa.max_follower_damping);
