@@ -38,27 +38,19 @@ LeaderConfig config(const std::string& architecture) {
 
 // the follower's and the twin's side, scripted: what they send in cycle k depends on k alone
 struct ScriptedPeers {
-  transport::Publication<msg::JointState> state;
-  transport::Publication<msg::WrenchStamped> wrench;
-  transport::Publication<msg::JointTorque> twin_feedback;
-  transport::Publication<msg::TdpaEnergy> tdpa;
+  test::ScriptedStream<msg::JointState> state;
+  test::ScriptedStream<msg::WrenchStamped> wrench;
+  test::ScriptedStream<msg::JointTorque> twin_feedback;
+  test::ScriptedStream<msg::TdpaEnergy> tdpa;
   transport::Publication<msg::NodeStatus> status;
-  test::ArrivalProbe<msg::JointState> state_arrived;
-  test::ArrivalProbe<msg::WrenchStamped> wrench_arrived;
-  test::ArrivalProbe<msg::JointTorque> twin_feedback_arrived;
-  test::ArrivalProbe<msg::TdpaEnergy> tdpa_arrived;
   test::DeliveryFence fence;
 
   ScriptedPeers(transport::Participant& peer, transport::Participant& node)
-      : state(peer, transport::topics::kFollowerState, "follower"),
-        wrench(peer, transport::topics::kFollowerWrench, "follower"),
-        twin_feedback(peer, transport::topics::kTwinFeedback, "twin"),
-        tdpa(peer, transport::topics::kTdpaFollowerToLeader, "follower"),
+      : state(peer, node, transport::topics::kFollowerState, "follower"),
+        wrench(peer, node, transport::topics::kFollowerWrench, "follower"),
+        twin_feedback(peer, node, transport::topics::kTwinFeedback, "twin"),
+        tdpa(peer, node, transport::topics::kTdpaFollowerToLeader, "follower"),
         status(peer, transport::topics::kNodeStatus, "follower"),
-        state_arrived(node, transport::topics::kFollowerState),
-        wrench_arrived(node, transport::topics::kFollowerWrench),
-        twin_feedback_arrived(node, transport::topics::kTwinFeedback),
-        tdpa_arrived(node, transport::topics::kTdpaFollowerToLeader),
         fence(peer, node) {
     transport::presize_joint_state(state.sample(), kJoints);
     twin_feedback.sample().tau_nm().resize(kJoints);
@@ -71,8 +63,8 @@ struct ScriptedPeers {
   // packets: the probe's alone where the architecture has no channel), and the status the node's
   // authority: all matched before the first cycle, or the node might miss one
   bool matched(bool tdpa_channel) const {
-    return state.matched() >= 2 && wrench.matched() >= 2 && twin_feedback.matched() >= 2 &&
-           tdpa.matched() >= (tdpa_channel ? 2 : 1) && status.matched() >= 1 && fence.matched();
+    return state.matched() && wrench.matched() && twin_feedback.matched() && tdpa.matched(tdpa_channel ? 2 : 1) &&
+           status.matched() >= 1 && fence.matched();
   }
 
   // a follower swaying about the home pose, pushed on by a varying wall, and a twin's torque
@@ -92,10 +84,10 @@ struct ScriptedPeers {
       tdpa.sample().energy_in_j()[c] = 2e-4 * static_cast<double>(k) * (1.0 + 0.1 * static_cast<double>(c));
       tdpa.sample().energy_out_j()[c] = 1e-4 * static_cast<double>(k);
     }
-    ASSERT_TRUE(test::deliver(state, state_arrived));
-    ASSERT_TRUE(test::deliver(wrench, wrench_arrived));
-    ASSERT_TRUE(test::deliver(twin_feedback, twin_feedback_arrived));
-    ASSERT_TRUE(test::deliver(tdpa, tdpa_arrived));
+    ASSERT_TRUE(state.deliver());
+    ASSERT_TRUE(wrench.deliver());
+    ASSERT_TRUE(twin_feedback.deliver());
+    ASSERT_TRUE(tdpa.deliver());
     ASSERT_TRUE(fence.pass());
   }
 

@@ -58,6 +58,22 @@ bool deliver(transport::Publication<T>& publication, ArrivalProbe<T>& probe) {
   return false;
 }
 
+/// A stream the scripted peer writes to the node: its publication and its probe.
+template <typename T>
+struct ScriptedStream {
+  ScriptedStream(transport::Participant& peer, transport::Participant& node, const transport::TopicSpec<T>& topic,
+                 const std::string& source)
+      : publication(peer, topic, source), probe(node, topic) {}
+  T& sample() { return publication.sample(); }
+  /// Publishes the sample and waits until the node's participant has it (deliver()).
+  bool deliver() { return test::deliver(publication, probe); }
+  /// The node's reader and the probe: both matched (`readers` 2), or only the probe.
+  bool matched(int readers = 2) const { return publication.matched() >= readers; }
+
+  transport::Publication<T> publication;
+  ArrivalProbe<T> probe;
+};
+
 /// Makes sure the node's readers have what its probes have. The samples of the peer reach the
 /// node's participant on one socket, handled in order by one receive thread, each datagram handed
 /// to every matched reader before the next: a reliable sample sent after them (a NodeStatus of no

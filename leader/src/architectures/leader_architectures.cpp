@@ -1,22 +1,16 @@
 #include "leader_architectures.h"
 
 #include <array>
-#include <stdexcept>
-#include <string>
 
 #include "mmt.h"
 #include "pfc.h"
 #include "position_position.h"
+#include "teleop/runtime/architecture_parts.h"
 
 namespace teleop::leader {
 namespace {
 
 using Factory = std::unique_ptr<LeaderArchitecture> (*)(const runtime::Architecture& a, const LeaderSetup& setup);
-
-struct Entry {
-  std::string_view name;
-  Factory make;
-};
 
 template <typename Part>
 std::unique_ptr<LeaderArchitecture> make(const runtime::Architecture& /*a*/, const LeaderSetup& setup) {
@@ -29,7 +23,7 @@ std::unique_ptr<LeaderArchitecture> make_pfc(const runtime::Architecture& a, con
 }
 
 // one row per architecture of runtime::architectures()
-constexpr std::array<Entry, 4> kLeaderParts{{
+constexpr std::array<runtime::ArchitecturePart<Factory>, 4> kLeaderParts{{
     {"position_position", &make<PositionPositionLeader>},
     {"pfc", &make_pfc},
     {"pfc_tdpa", &make_pfc},
@@ -40,17 +34,10 @@ constexpr std::array<Entry, 4> kLeaderParts{{
 
 std::unique_ptr<LeaderArchitecture> make_leader_architecture(const runtime::Architecture& architecture,
                                                              const LeaderSetup& setup) {
-  for (const Entry& e : kLeaderParts) {
-    if (e.name == architecture.name) return e.make(architecture, setup);
-  }
-  throw std::logic_error("the leader has no part for the architecture " + std::string(architecture.name) +
-                         " (leader/src/architectures/leader_architectures.cpp)");
+  return runtime::part_of(kLeaderParts, architecture, "leader", "leader/src/architectures/leader_architectures.cpp")(
+      architecture, setup);
 }
 
-std::vector<std::string_view> leader_architecture_names() {
-  std::vector<std::string_view> names;
-  for (const Entry& e : kLeaderParts) names.push_back(e.name);
-  return names;
-}
+std::vector<std::string_view> leader_architecture_names() { return runtime::part_names(kLeaderParts); }
 
 }  // namespace teleop::leader
