@@ -4,8 +4,8 @@
 // (position_position), a Cartesian target and the leader's TDPA packets (pfc, pfc_tdpa), joint
 // impedance with feed-forward from the twin (mmt). The commands of cycle k depend on k alone. The
 // hashes below were taken before the architectures moved behind their registry (issue 29), on
-// the enum-based follower at authority 3952579, with
-//   ctest --test-dir build/default -R follower_lockstep_trace_test --output-on-failure
+// the enum-based follower (the nodes of authority 3952579; commit d15c1dc), with
+//   build/default/bin/follower_lockstep_trace_test   (or: ctest --test-dir build/default -R FollowerLockstepTrace -V)
 // (each run prints its hash): a refactoring that changes one bit of a trace fails here.
 
 #include <gtest/gtest.h>

@@ -2,8 +2,8 @@
 // leader.yaml on the simulated haptic arm (it feels the feedback, so the feedback law moves the
 // device and shows in the trace) against a scripted follower and twin whose inputs are a function
 // of the cycle only. The hashes below were taken before the architectures moved behind their
-// registry (issue 29), on the enum-based leader at authority 3952579, with
-//   ctest --test-dir build/default -R leader_lockstep_trace_test --output-on-failure
+// registry (issue 29), on the enum-based leader (the nodes of authority 3952579; commit d15c1dc), with
+//   build/default/bin/leader_lockstep_trace_test   (or: ctest --test-dir build/default -R LeaderLockstepTrace -V)
 // (each run prints its hash): a refactoring that changes one bit of a trace fails here.
 
 #include <gtest/gtest.h>
