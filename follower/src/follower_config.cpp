@@ -118,11 +118,11 @@ FollowerConfig parse_follower_config(const ConfigNode& root, const robot::Hardwa
   c.teleoperation = runtime::parse_teleoperation_config(root);
   if (c.teleoperation) {
     // model-mediated: the follower tracks the twin; every other architecture: the leader
-    const bool mmt = c.teleoperation->architecture == runtime::Architecture::kMmt;
+    const bool mmt = c.teleoperation->architecture->commands == runtime::CommandPath::kTwin;
     const auto implied = mmt ? FollowerConfig::CommandSource::kTwin : FollowerConfig::CommandSource::kLeader;
     if (s.has("command_source") && c.command_source != implied) {
       throw s.error("command_source", std::string("contradicts teleoperation.architecture ") +
-                                          to_string(c.teleoperation->architecture) + " (leave it out)");
+                                          std::string(c.teleoperation->architecture->name) + " (leave it out)");
     }
     c.command_source = implied;
   }

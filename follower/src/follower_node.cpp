@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "architectures/follower_architectures.h"
 #include "teleop/common/clock.h"
 #include "teleop/transport/arm_topic.h"
 #include "teleop/transport/joint_fields.h"
@@ -74,24 +75,20 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<robot::
   // until a command arrives, hold the pose the robot is in, from the torque it holds it with
   hold_current_pose(active_, config_.hold_stiffness_nm_per_rad, config_.hold_damping_nms_per_rad);
   limiter_.reset(arm_.tau_measured_nm);
-  // the leader commands one of the two streams: the other is not waited for
-  const bool cartesian = config.teleoperation && runtime::is_cartesian(config.teleoperation->architecture);
-  if (cartesian) {
+  const double h = 1.0 / context.node.rate_hz;
+  architecture_ = make_follower_architecture({context.participant, context.node.name, config.arm, h,
+                                              config.teleoperation ? &*config.teleoperation : nullptr});
+  // the commander uses one of the two streams: the other is not waited for
+  if (architecture_->cartesian()) {
     joint_commands_.mark_optional();
   } else {
     cartesian_commands_.mark_optional();
   }
   joint_commands_.accept_only(config.accept_commands_from);
   cartesian_commands_.accept_only(config.accept_commands_from);
-  if (cartesian) {
-    // pfc observes its energy balance too, only pfc_tdpa corrects it
-    const bool correct = config.teleoperation->architecture == runtime::Architecture::kPfcTdpa;
-    const double h = 1.0 / context.node.rate_hz;
-    tdpa_.emplace(context.participant, context.node.name, config.arm, runtime::TdpaEnd::kFollower, 6, h, correct,
-                  config.teleoperation->tdpa.max_follower_damping);
-    passive_.emplace(*tdpa_, h, config.teleoperation->tdpa);
-  }
 }
+
+FollowerNode::~FollowerNode() = default;
 
 void FollowerNode::hold_current_pose(ValidCommand& hold, double stiffness, double damping) {
   hold = ValidCommand{};
@@ -185,7 +182,7 @@ void FollowerNode::run_watchdog(int64_t now_ns, bool stalled) {
     if (!stalled) watchdog_latency_max_s_ = std::max(watchdog_latency_max_s_, silence_s);
     hold_current_pose(active_, config_.hold_stiffness_nm_per_rad, config_.hold_damping_nms_per_rad);
     // the channel's session ended with the command source: both ends start their bookkeeping afresh
-    if (passive_) passive_->reset();
+    architecture_->restart();
   }
 }
 
@@ -198,19 +195,15 @@ void FollowerNode::run_reflex() {
   const SafetyReflexConfig& r = reflex_.config();
   // a contact is yielded to; a joint too fast is also braked to a stop (command_torque)
   hold_current_pose(reflex_hold_, r.hold_stiffness_nm_per_rad, r.hold_damping_nms_per_rad);
-  if (passive_) passive_->reset();
+  architecture_->restart();
 }
 
 void FollowerNode::apply_passivity() {
   // a latched reflex holds compliantly whatever comes in; otherwise the command, joined smoothly
   controlled_ = reflex_.latched() ? &reflex_hold_ : &rejoin_.apply(active_);
-  if (!passive_) return;
-  tdpa_->receive();
-  if (state_ == msg::STATE_RUNNING && active_.mode == msg::CONTROL_CARTESIAN_IMPEDANCE) {
-    passive_->apply(active_, control_.wrench(), corrected_);
-    controlled_ = &corrected_;
-  } else {
-    tdpa_->publish();  // the totals still go out, so the leader's observer keeps up
+  // the architecture's correction (pfc_tdpa's passivity controller) of the command as received
+  if (const ValidCommand* corrected = architecture_->correct(active_, state_ == msg::STATE_RUNNING, control_.wrench())) {
+    controlled_ = corrected;
   }
 }
 
@@ -297,7 +290,7 @@ void FollowerNode::cycle(const CycleTick& tick) {
 }
 
 void FollowerNode::fill_status(msg::NodeStatus& status) const {
-  if (tdpa_) status.tdpa_energy_j(tdpa_->observed_energy_j());
+  architecture_->fill_status(status);
 }
 
 void FollowerNode::active_faults(std::vector<uint32_t>& faults) const {
@@ -345,10 +338,7 @@ void FollowerNode::fill_report(runtime::NodeReport& report) const {
   counter("reflex_peak_ratio", reflex_.peak_ratio());
   counter("reflex_latched", reflex_.latched() ? 1.0 : 0.0);
   counter("resets", static_cast<double>(resets_));
-  if (tdpa_) {
-    tdpa_->fill_report(report);
-    counter("tdpa_position_drift_m", passive_->position_drift_m());
-  }
+  architecture_->fill_report(report);
   for (size_t i = 0; i < static_cast<size_t>(CommandIssue::kCount); ++i) {
     const auto issue = static_cast<CommandIssue>(i);
     counter(to_string(issue), static_cast<double>(validator_.count(issue)));
@@ -369,8 +359,8 @@ void FollowerNode::trace_row(double* row) const {
   // the external force on the robot (the wall pushing back, simulation ground truth): what the operator should feel
   for (int i = 0; i < 3; ++i) *row++ = control_.hardware_wrench()[i];
   for (int i = 0; i < 3; ++i) *row++ = control_.wrench()[i];
-  *row++ = tdpa_ ? tdpa_->observed_energy_j() : std::nan("");
-  *row++ = passive_ ? passive_->position_drift_m() : 0.0;
+  *row++ = architecture_->observed_energy_j();
+  *row++ = architecture_->position_drift_m();
   *row++ = torque_ratio_;
   *row++ = static_cast<double>(state_);
   // which sender's command is in force (sessions counted from 1) and its number

@@ -93,8 +93,8 @@ LeaderConfig parse_leader_config(const ConfigNode& root, const DeviceRegistry& d
   const auto teleoperation = runtime::parse_teleoperation_config(root);
   if (!teleoperation) throw root.error("teleoperation", "the leader needs a teleoperation section (architecture)");
   c.teleoperation = *teleoperation;
-  if (runtime::is_cartesian(c.teleoperation.architecture) && c.arm_model.empty() && !per_arm_models) {
-    throw s.error("arm_model", std::string("architecture ") + to_string(c.teleoperation.architecture) +
+  if (runtime::is_cartesian(*c.teleoperation.architecture) && c.arm_model.empty() && !per_arm_models) {
+    throw s.error("arm_model", std::string("architecture ") + std::string(c.teleoperation.architecture->name) +
                                    " maps the device in Cartesian space: give the arm's model file");
   }
   return c;

@@ -4,13 +4,12 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "architectures/leader_architectures.h"
 #include "teleop/common/clock.h"
 #include "teleop/transport/arm_topic.h"
 #include "teleop/transport/joint_fields.h"
 
 namespace teleop::leader {
-
-using runtime::Architecture;
 
 LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context)
     : config_(config),
@@ -33,29 +32,9 @@ LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context
     device_kinematics_ = std::make_unique<ArmKinematics>(config.arm_model, config.ee_site);
     command_kinematics_ = std::make_unique<ArmKinematics>(config.arm_model, config.ee_site);
   }
-  const Architecture a = config.teleoperation.architecture;
-  if (a != Architecture::kMmt) twin_feedback_.mark_optional();  // only MMT renders the twin's forces
-  if (runtime::is_cartesian(a)) {
-    cartesian_command_.emplace(context.participant, transport::arm_topic(transport::topics::kLeaderCartesian, config.arm),
-                               context.node.name);
-    auto& cmd = cartesian_command_->sample();
-    cmd.robot("follower");
-    cmd.arm(transport::arm_label(config.arm));
-    cmd.frame("base");
-    // PFC reports its energy balance too; only pfc_tdpa corrects it
-    tdpa_.emplace(context.participant, context.node.name, config.arm, runtime::TdpaEnd::kLeader, 6, period_s_,
-                  a == Architecture::kPfcTdpa, config.teleoperation.tdpa.max_leader_damping);
-  } else if (a == Architecture::kPositionPosition) {
-    joint_command_.emplace(context.participant, transport::arm_topic(transport::topics::kLeaderCommand, config.arm),
-                           context.node.name);
-    auto& cmd = joint_command_->sample();
-    cmd.robot("follower");
-    cmd.arm(transport::arm_label(config.arm));
-    cmd.mode().assign(n, msg::CONTROL_JOINT_IMPEDANCE);
-    transport::presize(n, cmd.q_des_rad(), cmd.dq_des_radps(), cmd.tau_ff_nm());
-    cmd.stiffness_nm_per_rad().assign(n, config.stiffness_nm_per_rad);
-    cmd.damping_nms_per_rad().assign(n, config.damping_nms_per_rad);
-  }
+  architecture_ = make_leader_architecture(
+      *config_.teleoperation.architecture,
+      {config_, context, period_s_, {follower_state_, follower_wrench_, twin_feedback_}, device_state_});
   if (config.hand) hand_command_.emplace(context.participant, transport::topics::kHandCommand, context.node.name);
   watch_authority(context.participant, context.node.name);
   auto& st = device_state_.sample();
@@ -76,28 +55,20 @@ LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context
 }
 
 void LeaderNode::watch_authority(transport::Participant& participant, const std::string& self) {
-  // model-mediated: the twin takes the device's state; the other architectures command the follower
-  if (cartesian_command_) {
-    authority_.emplace(participant, cartesian_command_->writer_id(), self, cartesian_command_->topic_name());
-  } else if (architecture() == Architecture::kMmt) {
-    authority_.emplace(participant, device_state_.writer_id(), self, device_state_.topic_name());
-  } else {
-    authority_.emplace(participant, joint_command_->writer_id(), self, joint_command_->topic_name());
-  }
+  authority_.emplace(participant, architecture_->authority_writer(), self, architecture_->authority_topic());
 }
 
 void LeaderNode::poll_peers() {
   follower_state_.poll();
   follower_wrench_.poll();
   twin_feedback_.poll();
-  if (tdpa_) tdpa_->receive();
+  architecture_->receive();
 }
 
 void LeaderNode::update_state(int64_t now_ns) {
   const auto timeout = static_cast<int64_t>(config_.peer_timeout_s * 1e9);
-  // model-mediated: the operator touches the twin, the follower follows it; both must be there
-  const bool fresh = follower_state_.age_ns(now_ns) < timeout &&
-                     (architecture() != Architecture::kMmt || twin_feedback_.age_ns(now_ns) < timeout);
+  // the follower, and whatever else the architecture needs (model-mediated: the twin), must be there
+  const bool fresh = follower_state_.age_ns(now_ns) < timeout && architecture_->peers_fresh(now_ns, timeout);
   authority_->poll(now_ns);
   // running means in command: the node that takes our commands follows us and has them in force
   const runtime::CommandRefusal refusal = authority_->refusal();
@@ -105,7 +76,7 @@ void LeaderNode::update_state(int64_t now_ns) {
                        refusal != runtime::CommandRefusal::kNotYet;
   if (fresh && !authority_->in_command()) ++cycles_not_in_command_;
   if (fresh && authority_->in_command()) {
-    if (state_ == msg::STATE_SAFE_HOLD && tdpa_) tdpa_->reset();  // a new session with the follower
+    if (state_ == msg::STATE_SAFE_HOLD) architecture_->restart();  // a new session with the follower
     state_ = msg::STATE_RUNNING;
   } else if (state_ == msg::STATE_RUNNING || (state_ == msg::STATE_STARTING && fresh && refused)) {
     // the peer went silent, or our commands are not in force: freeze the command where it is
@@ -122,123 +93,20 @@ void LeaderNode::move_device(double t_s) {
   if (!device_impl_->read(device_)) ++device_faults_;
 }
 
-void LeaderNode::send_joint_command(const JointVector& q_cmd, bool frozen) {
-  for (size_t i = 0; i < config_.joints; ++i) dq_cmd_[i] = frozen ? 0.0 : config_.workspace_scale * device_.dq_radps[i];
-  q_cmd_ = q_cmd;
-  if (!joint_command_) return;
-  auto& cmd = joint_command_->sample();
-  transport::copy_joints(q_cmd_, config_.joints, cmd.q_des_rad());
-  transport::copy_joints(dq_cmd_, config_.joints, cmd.dq_des_radps());
-  joint_command_->publish();
-}
-
-namespace {
-void set_vector3(msg::Vector3& out, double x, double y, double z) {
-  out.x(x);
-  out.y(y);
-  out.z(z);
-}
-}  // namespace
-
-void LeaderNode::send_cartesian_command() {
-  auto& cmd = cartesian_command_->sample();
-  const Eigen::Vector3d& x = cartesian_.position();
-  const Eigen::Quaterniond r = cartesian_.orientation();
-  const control::Vector6& v = cartesian_.twist();
-  set_vector3(cmd.target_pose().position_m(), x.x(), x.y(), x.z());
-  auto& o = cmd.target_pose().orientation();
-  o.w(r.w());
-  o.x(r.x());
-  o.y(r.y());
-  o.z(r.z());
-  set_vector3(cmd.target_twist().linear_mps(), v[0], v[1], v[2]);
-  set_vector3(cmd.target_twist().angular_radps(), v[3], v[4], v[5]);
-  const CartesianGains& g = config_.cartesian;
-  set_vector3(cmd.stiffness_translational_n_per_m(), g.translational_n_per_m[0], g.translational_n_per_m[1], g.translational_n_per_m[2]);
-  set_vector3(cmd.stiffness_rotational_nm_per_rad(), g.rotational_nm_per_rad[0], g.rotational_nm_per_rad[1], g.rotational_nm_per_rad[2]);
-  cmd.damping_ratio(g.damping_ratio);
-  cmd.nullspace_stiffness_nm_per_rad(g.nullspace_stiffness_nm_per_rad);
-  cartesian_command_->publish();
-}
-
 void LeaderNode::send_command(bool frozen) {
   // the joint mapping always runs: it is the device state the twin couples to
-  send_joint_command(clutch_.map(device_.q_rad, frozen), frozen);
+  q_cmd_ = clutch_.map(device_.q_rad, frozen);
+  for (size_t i = 0; i < config_.joints; ++i) dq_cmd_[i] = frozen ? 0.0 : config_.workspace_scale * device_.dq_radps[i];
   if (device_kinematics_) device_kinematics_->update(device_.q_rad, device_.dq_radps);
-  if (cartesian_command_) {
+  if (architecture_->cartesian()) {
     cartesian_.map(device_kinematics_->position(), device_kinematics_->rotation(), device_kinematics_->twist(), frozen);
-    send_cartesian_command();
     command_position_ = cartesian_.position();
   } else if (command_kinematics_) {
     // the commanded joints' flange position: only needed where the command is not Cartesian
     command_kinematics_->update(q_cmd_, dq_cmd_);
     command_position_ = command_kinematics_->position();
   }
-}
-
-bool LeaderNode::position_coupling_feedback(int64_t now_ns) {
-  // the spring-damper the follower's joint impedance exerts, felt back: K (q_f - q_cmd) + D (dq_f - dq_cmd)
-  const auto& st = follower_state_.latest();
-  JointVector q_f{};
-  JointVector dq_f{};
-  if (!transport::read_joints(st.q_rad(), config_.joints, q_f) || !transport::read_joints(st.dq_radps(), config_.joints, dq_f)) {
-    ++rejected_feedback_;
-    return false;
-  }
-  for (size_t i = 0; i < config_.joints; ++i) {
-    const double tau = config_.stiffness_nm_per_rad * (q_f[i] - q_cmd_[i]) + config_.damping_nms_per_rad * (dq_f[i] - dq_cmd_[i]);
-    // device torque for a follower-space torque: scaled like the motion, so power is preserved
-    feedback_[i] = config_.workspace_scale * tau;
-  }
-  return follower_state_.age_ns(now_ns) < static_cast<int64_t>(config_.peer_timeout_s * 1e9);
-}
-
-bool LeaderNode::wrench_feedback(int64_t now_ns) {
-  const auto& w = follower_wrench_.latest();
-  control::Vector6 wrench;
-  wrench << w.force_n().x(), w.force_n().y(), w.force_n().z(), w.torque_nm().x(), w.torque_nm().y(), w.torque_nm().z();
-  if (!follower_wrench_.has_sample() || !wrench.allFinite()) {
-    if (follower_wrench_.has_sample()) ++rejected_feedback_;
-    wrench.setZero();
-  }
-  // the channel's leader port: f resists the command velocity v (both follower space), the
-  // controller may add damping; the device then renders -f_out
-  std::array<double, 6> f{};
-  std::array<double, 6> v{};
-  std::array<double, 6> f_out{};
-  for (int i = 0; i < 6; ++i) {
-    f[static_cast<size_t>(i)] = -wrench[i];
-    v[static_cast<size_t>(i)] = cartesian_.twist()[i];
-  }
-  (void)tdpa_->update(f, v, f_out);
-  tdpa_->publish();
-  control::Vector6 render;
-  for (int i = 0; i < 6; ++i) render[i] = -f_out[static_cast<size_t>(i)];
-  // device force for a follower-space force: scaled like the motion (power preserved)
-  render.head<3>() *= config_.workspace_scale;
-  device_kinematics_->torque_for_wrench(render, feedback_);
-  return follower_wrench_.age_ns(now_ns) < static_cast<int64_t>(config_.peer_timeout_s * 1e9);
-}
-
-bool LeaderNode::compute_feedback(int64_t now_ns) {
-  switch (architecture()) {
-    case Architecture::kPositionPosition:
-      return follower_state_.has_sample() && position_coupling_feedback(now_ns);
-    case Architecture::kPfc:
-    case Architecture::kPfcTdpa:
-      return wrench_feedback(now_ns);
-    case Architecture::kMmt: {
-      // the twin's constraint torque, in follower joint space: scaled like the motion
-      JointVector tau{};
-      if (!transport::read_joints(twin_feedback_.latest().tau_nm(), config_.joints, tau)) {
-        if (twin_feedback_.has_sample()) ++rejected_feedback_;
-        return false;
-      }
-      for (size_t i = 0; i < config_.joints; ++i) feedback_[i] = config_.workspace_scale * tau[i];
-      return twin_feedback_.age_ns(now_ns) < static_cast<int64_t>(config_.peer_timeout_s * 1e9);
-    }
-  }
-  return false;
+  architecture_->send(mapped_device());
 }
 
 void LeaderNode::publish_device_state() {
@@ -263,7 +131,7 @@ void LeaderNode::cycle(const CycleTick& tick) {
   move_device(static_cast<double>(tick.index) * period_s_);
   command_hand(static_cast<double>(tick.index) * period_s_);
   send_command(state_ == msg::STATE_SAFE_HOLD);
-  const bool fresh = compute_feedback(tick.now_ns);
+  const bool fresh = architecture_->feedback(mapped_device(), tick.now_ns, feedback_, rejected_feedback_);
   // lost or stale source, or the follower gone: fade the feedback out, never cut it
   renderer_.render(feedback_, config_.feedback_enabled && fresh && state_ == msg::STATE_RUNNING);
   if (!device_impl_->write(renderer_.output())) ++device_faults_;
@@ -283,7 +151,7 @@ void LeaderNode::command_hand(double t_s) {
 }
 
 void LeaderNode::fill_status(msg::NodeStatus& status) const {
-  if (tdpa_) status.tdpa_energy_j(tdpa_->observed_energy_j());
+  architecture_->fill_status(status);
 }
 
 void LeaderNode::active_faults(std::vector<uint32_t>& faults) const {
@@ -294,14 +162,13 @@ void LeaderNode::active_faults(std::vector<uint32_t>& faults) const {
 }
 
 void LeaderNode::fill_report(runtime::NodeReport& report) const {
-  if (joint_command_) report.add(*joint_command_);
+  architecture_->report_command(report);
   if (hand_command_) report.add(*hand_command_);
-  if (cartesian_command_) report.add(*cartesian_command_);
   report.add(device_state_);
   report.add(follower_state_);
   report.add(follower_wrench_);
   report.add(twin_feedback_);
-  if (tdpa_) tdpa_->fill_report(report);
+  architecture_->report_channel(report);
   report.counters.emplace_back("peer_lost_events", static_cast<double>(peer_lost_events_));
   report.counters.emplace_back("not_in_command_events", static_cast<double>(not_in_command_events_));
   report.counters.emplace_back("cycles_not_in_command", static_cast<double>(cycles_not_in_command_));
@@ -328,7 +195,7 @@ void LeaderNode::trace_row(double* row) const {
   const bool kinematics = device_kinematics_ != nullptr;
   for (int i = 0; i < 3; ++i) *row++ = command_position_[i];
   for (int i = 0; i < 3; ++i) *row++ = kinematics ? felt_force_[i] : nan;
-  *row++ = tdpa_ ? tdpa_->observed_energy_j() : nan;
+  *row++ = architecture_->observed_energy_j();
   *row++ = renderer_.fade();
   *row++ = static_cast<double>(state_);
   // which follower's state the leader follows (a restarted follower opens a new session)

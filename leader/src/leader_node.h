@@ -1,9 +1,9 @@
 #pragma once
 // The leader station: a simulated operator moves the device (a simulated haptic arm, or the
 // script itself), the device's motion is mapped into the follower's workspace and sent as the
-// architecture asks (teleoperation/architecture.h), and the architecture's feedback is rendered
-// on the device through the FeedbackRenderer. Losing the follower (or, model-mediated, the twin)
-// freezes the command and fades the feedback out; NodeStatus reports it.
+// architecture's leader part asks (architectures/leader_architecture.h), and the feedback it
+// computes is rendered on the device through the FeedbackRenderer. Losing the follower (or,
+// model-mediated, the twin) freezes the command and fades the feedback out; NodeStatus reports it.
 
 #include <teleop/msg/arm.h>
 #include <teleop/msg/hand.h>
@@ -14,6 +14,7 @@
 
 #include "teleop/common/config.h"
 #include "teleop/common/joint_model.h"
+#include "architectures/leader_architecture.h"
 #include "arm_kinematics.h"
 #include "cartesian_mapping.h"
 #include "clutch.h"
@@ -22,9 +23,7 @@
 #include "operator_motion.h"
 #include "teleop/leader/leader_device.h"
 #include "teleop/runtime/node_runner.h"
-#include "teleop/runtime/architecture.h"
 #include "teleop/runtime/command_authority.h"
-#include "teleop/runtime/tdpa_link.h"
 #include "teleop/transport/publication.h"
 #include "teleop/transport/subscription.h"
 
@@ -51,32 +50,25 @@ class LeaderNode final : public runtime::NodeLogic {
   const Eigen::Vector3d& felt_force() const { return felt_force_; }
 
  private:
-  runtime::Architecture architecture() const { return config_.teleoperation.architecture; }
   void poll_peers();
   /// Watches whether the writer that carries this leader's commands under its architecture is in command.
   void watch_authority(transport::Participant& participant, const std::string& self);
   void update_state(int64_t now_ns);
   void move_device(double t_s);
   void send_command(bool frozen);
-  void send_joint_command(const JointVector& q_cmd, bool frozen);
-  void send_cartesian_command();
-  bool compute_feedback(int64_t now_ns);
-  bool position_coupling_feedback(int64_t now_ns);
-  bool wrench_feedback(int64_t now_ns);
+  MappedDevice mapped_device() const { return {q_cmd_, dq_cmd_, cartesian_, device_kinematics_.get()}; }
   void publish_device_state();
   void command_hand(double t_s);
   void update_trace_values();
 
   LeaderConfig config_;
   double period_s_;
-  std::optional<transport::Publication<msg::JointCommand>> joint_command_;
-  std::optional<transport::Publication<msg::CartesianCommand>> cartesian_command_;
   transport::Publication<msg::JointState> device_state_;
   std::optional<transport::Publication<msg::HandCommand>> hand_command_;  // with leader.hand
   transport::Subscription<msg::JointState> follower_state_;
   transport::Subscription<msg::WrenchStamped> follower_wrench_;
   transport::Subscription<msg::JointTorque> twin_feedback_;
-  std::optional<runtime::TdpaLink> tdpa_;
+  std::unique_ptr<LeaderArchitecture> architecture_;  // teleoperation.architecture's leader part
   std::optional<runtime::CommandAuthority> authority_;
   std::unique_ptr<LeaderDevice> device_impl_;  // the one leader.device names
   std::unique_ptr<ArmKinematics> device_kinematics_;

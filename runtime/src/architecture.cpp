@@ -1,16 +1,17 @@
 #include "teleop/runtime/architecture.h"
 
 #include <array>
-#include <utility>
 
 namespace teleop::runtime {
 namespace {
 
-constexpr std::array<std::pair<Architecture, const char*>, 4> kNames{{
-    {Architecture::kPositionPosition, "position_position"},
-    {Architecture::kPfc, "pfc"},
-    {Architecture::kPfcTdpa, "pfc_tdpa"},
-    {Architecture::kMmt, "mmt"},
+// the built-in architectures (docs/architectures.md); a new one is a row here and its leader's
+// strategy (leader/src/architectures/leader_architectures.cpp)
+constexpr std::array<Architecture, 4> kArchitectures{{
+    {"position_position", CommandPath::kLeaderJoint, false},
+    {"pfc", CommandPath::kLeaderCartesian, false},
+    {"pfc_tdpa", CommandPath::kLeaderCartesian, true},
+    {"mmt", CommandPath::kTwin, false},
 }};
 
 double read_max_damping(const ConfigNode& tdpa, const std::string& key) {
@@ -21,23 +22,22 @@ double read_max_damping(const ConfigNode& tdpa, const std::string& key) {
 
 }  // namespace
 
-const char* to_string(Architecture architecture) {
-  for (const auto& [a, name] : kNames) {
-    if (a == architecture) return name;
+std::span<const Architecture> architectures() { return kArchitectures; }
+
+const Architecture* find_architecture(std::string_view name) {
+  for (const Architecture& a : kArchitectures) {
+    if (a.name == name) return &a;
   }
-  return "unknown";
+  return nullptr;
 }
 
 std::optional<TeleoperationConfig> parse_teleoperation_config(const ConfigNode& root) {
   const auto section = root.optional_child("teleoperation");
   if (!section) return std::nullopt;
   std::vector<std::string> names;
-  for (const auto& [a, name] : kNames) names.emplace_back(name);
+  for (const Architecture& a : kArchitectures) names.emplace_back(a.name);
   TeleoperationConfig c;
-  const std::string chosen = section->get_choice("architecture", names);
-  for (const auto& [a, name] : kNames) {
-    if (chosen == name) c.architecture = a;
-  }
+  c.architecture = find_architecture(section->get_choice("architecture", names));
   if (const auto tdpa = section->optional_child("tdpa")) {
     c.tdpa.max_leader_damping = read_max_damping(*tdpa, "max_leader_damping");
     c.tdpa.max_follower_damping = read_max_damping(*tdpa, "max_follower_damping");

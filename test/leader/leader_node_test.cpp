@@ -179,7 +179,7 @@ class FeedbackFadeTest : public ::testing::Test {
   static LeaderConfig haptic_config() {
     LeaderConfig c = config();
     c.motion.amplitude_rad.fill(0.0);
-    c.teleoperation.architecture = runtime::Architecture::kPositionPosition;
+    c.teleoperation.architecture = runtime::find_architecture("position_position");
     c.stiffness_nm_per_rad = 200;
     c.feedback.fade_s = 0.1;
     c.feedback.max_rate_nm_per_s = 500;  // 0.5 Nm per cycle

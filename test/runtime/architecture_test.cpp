@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace teleop::runtime {
 namespace {
@@ -26,11 +28,12 @@ std::string error_of(const std::string& text) {
 TEST(TeleoperationConfig, IsAbsentWithoutTheSection) { EXPECT_FALSE(parse("node: {name: x}\n").has_value()); }
 
 TEST(TeleoperationConfig, ReadsEachArchitectureByName) {
-  EXPECT_EQ(parse("teleoperation: {architecture: position_position}\n")->architecture, Architecture::kPositionPosition);
-  EXPECT_EQ(parse("teleoperation: {architecture: pfc}\n")->architecture, Architecture::kPfc);
-  EXPECT_EQ(parse("teleoperation: {architecture: pfc_tdpa}\n")->architecture, Architecture::kPfcTdpa);
-  EXPECT_EQ(parse("teleoperation: {architecture: mmt}\n")->architecture, Architecture::kMmt);
-  EXPECT_STREQ(to_string(Architecture::kPfcTdpa), "pfc_tdpa");
+  EXPECT_EQ(parse("teleoperation: {architecture: position_position}\n")->architecture,
+            find_architecture("position_position"));
+  EXPECT_EQ(parse("teleoperation: {architecture: pfc}\n")->architecture, find_architecture("pfc"));
+  EXPECT_EQ(parse("teleoperation: {architecture: pfc_tdpa}\n")->architecture, find_architecture("pfc_tdpa"));
+  EXPECT_EQ(parse("teleoperation: {architecture: mmt}\n")->architecture, find_architecture("mmt"));
+  EXPECT_EQ(find_architecture("pfc_tdpa")->name, "pfc_tdpa");
 }
 
 TEST(TeleoperationConfig, DefaultsToUnlimitedDampersAndNoDriftCompensation) {
@@ -62,6 +65,31 @@ TEST(TeleoperationConfig, NamesFileAndKeyOfABadValue) {
   EXPECT_NE(negative.find("teleoperation.tdpa.drift_time_constant_s"), std::string::npos) << negative;
   const std::string zero = error_of("teleoperation: {architecture: pfc_tdpa, tdpa: {drift_max_speed_m_per_s: 0}}\n");
   EXPECT_NE(zero.find("teleoperation.tdpa.drift_max_speed_m_per_s"), std::string::npos) << zero;
+}
+
+// the registry (runtime/architecture.h): the built-ins, the default first, and what the follower
+// and the twin play their part from
+TEST(ArchitectureRegistry, HoldsTheFourBuiltInsWithTheDefaultFirst) {
+  std::vector<std::string_view> names;
+  for (const Architecture& a : architectures()) names.push_back(a.name);
+  EXPECT_EQ(names, (std::vector<std::string_view>{"position_position", "pfc", "pfc_tdpa", "mmt"}));
+  EXPECT_EQ(TeleoperationConfig{}.architecture, find_architecture("position_position"));
+  EXPECT_EQ(find_architecture("bilateral"), nullptr);
+}
+
+TEST(ArchitectureRegistry, SaysWhoCommandsTheFollowerAndWhetherTdpaCorrects) {
+  EXPECT_EQ(find_architecture("position_position")->commands, CommandPath::kLeaderJoint);
+  EXPECT_TRUE(is_cartesian(*find_architecture("pfc")));
+  EXPECT_TRUE(is_cartesian(*find_architecture("pfc_tdpa")));
+  EXPECT_FALSE(is_cartesian(*find_architecture("mmt")));
+  EXPECT_EQ(find_architecture("mmt")->commands, CommandPath::kTwin);
+  for (const Architecture& a : architectures()) EXPECT_EQ(a.tdpa_corrects, a.name == "pfc_tdpa") << a.name;
+}
+
+TEST(ArchitectureRegistry, AnUnknownNameListsTheRegisteredOnes) {
+  const std::string unknown = error_of("teleoperation: {architecture: bilateral}\n");
+  EXPECT_NE(unknown.find("'bilateral' is not one of: position_position, pfc, pfc_tdpa, mmt"), std::string::npos)
+      << unknown;
 }
 
 }  // namespace

@@ -81,7 +81,7 @@ TwinConfig parse_twin_config(const ConfigNode& root) {
   if (auto hil = s.optional_child("hil")) c.hil = read_hil(*hil);
   if (c.mode == TwinMode::kHil && !s.has("hil")) throw s.error("hil", "mode: hil needs a hil section with the goal");
   const auto teleoperation = runtime::parse_teleoperation_config(root);
-  c.mmt.enabled = teleoperation && teleoperation->architecture == runtime::Architecture::kMmt;
+  c.mmt.enabled = teleoperation && teleoperation->architecture->commands == runtime::CommandPath::kTwin;
   if (auto mmt = s.optional_child("mmt")) {
     c.mmt.stiffness_nm_per_rad = mmt->get_double("follower_stiffness_nm_per_rad", Range{0, 1e5}, c.mmt.stiffness_nm_per_rad);
     c.mmt.damping_nms_per_rad = mmt->get_double("follower_damping_nms_per_rad", Range{0, 1e4}, c.mmt.damping_nms_per_rad);

@@ -15,7 +15,6 @@
 #include "teleop/follower/speed_brake.h"
 #include "teleop/follower/follower_config.h"
 #include "teleop/follower/joint_rejoin.h"
-#include "teleop/follower/passive_reference.h"
 #include "teleop/robot/robot_hardware.h"
 #include "teleop/follower/torque_limiter.h"
 #include "teleop/runtime/node_runner.h"
@@ -23,6 +22,8 @@
 #include "teleop/transport/subscription.h"
 
 namespace teleop::follower {
+
+class FollowerArchitecture;  // its architecture's part (follower/src/architectures/)
 
 class FollowerNode final : public runtime::NodeLogic {
  public:
@@ -33,6 +34,7 @@ class FollowerNode final : public runtime::NodeLogic {
   FollowerNode(const FollowerConfig& config, runtime::NodeContext& context);
   /// Drives `hardware` (tests, other robots).
   FollowerNode(const FollowerConfig& config, std::unique_ptr<robot::RobotHardware> hardware, runtime::NodeContext& context);
+  ~FollowerNode() override;
 
   void cycle(const CycleTick& tick) override;
   msg::NodeState state() const override { return state_; }
@@ -83,10 +85,8 @@ class FollowerNode final : public runtime::NodeLogic {
   robot::ArmState arm_{};
   msg::NodeState state_ = msg::STATE_STARTING;
   ValidCommand active_{};
-  // pfc / pfc_tdpa: the follower's end of the TDPA channel and the command it corrects
-  std::optional<runtime::TdpaLink> tdpa_;
-  std::optional<PassiveReference> passive_;
-  ValidCommand corrected_{};
+  // teleoperation.architecture's part: which stream is awaited, the correction of the command
+  std::unique_ptr<FollowerArchitecture> architecture_;
   const ValidCommand* controlled_ = &active_;
   SafetyReflex reflex_;
   SpeedBrake brake_;

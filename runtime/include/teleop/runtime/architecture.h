@@ -10,17 +10,41 @@
 
 #include <limits>
 #include <optional>
+#include <span>
+#include <string_view>
 
 #include "teleop/common/config.h"
 
 namespace teleop::runtime {
 
-enum class Architecture { kPositionPosition, kPfc, kPfcTdpa, kMmt };
+/// Whose commands the follower tracks under an architecture, and in which space.
+enum class CommandPath {
+  kLeaderJoint,      ///< the leader's joint impedance commands (teleop/leader/joint_command)
+  kLeaderCartesian,  ///< the leader's Cartesian commands, with a TDPA channel beside them
+  kTwin,             ///< the twin's joint commands (teleop/twin/joint_command): model-mediated
+};
 
-const char* to_string(Architecture architecture);
+/// One architecture of the registry: its name in `teleoperation.architecture` and what every node
+/// of a scenario reads from it to play its part. The leader's part is a strategy of its own
+/// (leader/src/architectures/, one file per architecture, registered by this name); the follower
+/// and the twin play theirs from `commands` and `tdpa_corrects`.
+struct Architecture {
+  std::string_view name;
+  CommandPath commands = CommandPath::kLeaderJoint;
+  /// The TDPA controllers correct the channel (pfc_tdpa); false: a Cartesian channel's energy
+  /// balance is only observed (pfc reports it).
+  bool tdpa_corrects = false;
+};
+
+/// The registry: the architectures every build knows, the default (position_position) first. A
+/// static table (architecture.cpp), no registration at start-up: docs/architecture.md, "A new
+/// teleoperation architecture".
+std::span<const Architecture> architectures();
+/// The architecture of that name; nullptr when there is none.
+const Architecture* find_architecture(std::string_view name);
 
 /// True when the leader commands the follower in Cartesian space (pfc, pfc_tdpa).
-constexpr bool is_cartesian(Architecture a) { return a == Architecture::kPfc || a == Architecture::kPfcTdpa; }
+inline bool is_cartesian(const Architecture& a) { return a.commands == CommandPath::kLeaderCartesian; }
 
 struct TdpaSettings {
   /// Limits of the adaptive dampers: alpha [N s/m] at the leader, beta [m/(N s)] at the
@@ -40,12 +64,14 @@ struct TdpaSettings {
 };
 
 struct TeleoperationConfig {
-  Architecture architecture = Architecture::kPositionPosition;
+  /// An entry of architectures(), never null.
+  const Architecture* architecture = &architectures().front();
   TdpaSettings tdpa;
 };
 
 /// Reads the optional `teleoperation:` section of a node config; nullopt when absent.
-/// Throws ConfigError naming file and key.
+/// Throws ConfigError naming file and key (an unknown architecture: the registry's names and
+/// the nearest to the one given).
 std::optional<TeleoperationConfig> parse_teleoperation_config(const ConfigNode& root);
 
 }  // namespace teleop::runtime
