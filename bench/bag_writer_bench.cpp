@@ -28,7 +28,7 @@ void BM_WriteMessages(benchmark::State& state) {
     BagWriter writer({dir});
     int topics[3];
     for (int i = 0; i < 3; ++i)
-      topics[i] = writer.add_topic({"teleop/bench/" + std::to_string(i), "teleop/msg/Bench", ""});
+      topics[i] = writer.add_topic({"teleop/bench/" + std::to_string(i), "teleop/msg/Bench", "", "", ""});
     std::vector<uint8_t> data(size, 0x5A);
     teleop::bag::WriterGuid writers[2] = {{1}, {2}};
     int64_t t = 1'700'000'000'000'000'000;

@@ -12,8 +12,8 @@ demo_packages=(
   libmujoco-dev libqhull-dev libeigen3-dev libyaml-cpp-dev libspdlog-dev libcli11-dev libssl-dev
   # Debian's mujoco CMake config finds OpenGL (its viewer's); a fresh machine has no GL headers
   libgl-dev libopengl-dev libglx-dev
-  # recordings of the bus (bag/, docs/recording.md)
-  libsqlite3-dev
+  # recordings of the bus (bag/, docs/recording.md): sqlite3 bags; MCAP chunks and their CRCs
+  libsqlite3-dev libzstd-dev liblz4-dev zlib1g-dev
   # figures of runs and experiments (teleop plot, teleop experiment; docs/plots.md)
   python3-matplotlib
   # the 3D view and videos of runs (teleop view, teleop render; docs/view.md): its window, its PNGs
