@@ -50,6 +50,10 @@ McapCatalogue stream_catalogue(const MappedFile& file);
 /// Through the summary; false (and `why` says what is wrong) when there is no sound one.
 bool index_catalogue(const MappedFile& file, McapCatalogue& out, std::string& why);
 
+/// A Schema or Channel record into the catalogue (a later one of the same id replaces it); any
+/// other record is ignored.
+void add_definition(Op op, const RecordDecoder& in, McapCatalogue& out);
+
 /// The uncompressed records of the chunk whose record is at `ref`, into `buffer` (CRC checked
 /// when the chunk has one).
 ByteSpan chunk_records(const MappedFile& file, const ChunkRef& ref, std::vector<uint8_t>& buffer);

@@ -64,13 +64,8 @@ bool index_catalogue(const MappedFile& file, McapCatalogue& out, std::string& wh
   std::vector<ChunkIndexRecord> chunks;
   uint64_t counted = 0;
   for_each_record(summary, what, [&](Op op, const RecordDecoder& in, size_t) {
-    if (op == Op::kSchema) {
-      SchemaRecord schema = decode_schema(in);
-      out.schemas[schema.id] = std::move(schema);
-    } else if (op == Op::kChannel) {
-      ChannelRecord channel = decode_channel(in);
-      out.channels[channel.id] = std::move(channel);
-    } else if (op == Op::kChunkIndex) {
+    add_definition(op, in, out);
+    if (op == Op::kChunkIndex) {
       chunks.push_back(decode_chunk_index(in));
     } else if (op == Op::kStatistics) {
       counted = decode_statistics(in).message_count;

@@ -8,16 +8,6 @@
 namespace teleop::bag::mcap {
 namespace {
 
-void add_schema_or_channel(Op op, const RecordDecoder& in, McapCatalogue& out) {
-  if (op == Op::kSchema) {
-    SchemaRecord schema = decode_schema(in);
-    out.schemas[schema.id] = std::move(schema);
-  } else if (op == Op::kChannel) {
-    ChannelRecord channel = decode_channel(in);
-    out.channels[channel.id] = std::move(channel);
-  }
-}
-
 // the messages (and any schemas or channels) inside one chunk
 void scan_chunk(const MappedFile& file, const ChunkRef& ref, McapCatalogue& out, std::vector<uint8_t>& buffer) {
   const auto chunk_no = static_cast<uint32_t>(out.chunks.size());
@@ -29,7 +19,7 @@ void scan_chunk(const MappedFile& file, const ChunkRef& ref, McapCatalogue& out,
       const MessageRecord m = decode_message(in);
       out.messages.push_back({m.log_time, at, chunk_no, m.channel_id});
     } else {
-      add_schema_or_channel(op, in, out);
+      add_definition(op, in, out);
     }
   });
 }
@@ -41,6 +31,16 @@ std::string chunk_compression(const MappedFile& file, const ChunkRef& ref) {
 }
 
 }  // namespace
+
+void add_definition(Op op, const RecordDecoder& in, McapCatalogue& out) {
+  if (op == Op::kSchema) {
+    SchemaRecord schema = decode_schema(in);
+    out.schemas[schema.id] = std::move(schema);
+  } else if (op == Op::kChannel) {
+    ChannelRecord channel = decode_channel(in);
+    out.channels[channel.id] = std::move(channel);
+  }
+}
 
 McapCatalogue stream_catalogue(const MappedFile& file) {
   McapCatalogue out;
@@ -71,7 +71,7 @@ McapCatalogue stream_catalogue(const MappedFile& file) {
       const MessageRecord m = decode_message(in);
       out.messages.push_back({m.log_time, at, MessageRef::kUnchunked, m.channel_id});
     } else {
-      add_schema_or_channel(op, in, out);
+      add_definition(op, in, out);
     }
     ended = op == Op::kDataEnd || op == Op::kFooter;
     at += kRecordPrefixBytes + length;

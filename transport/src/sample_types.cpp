@@ -19,6 +19,7 @@ SampleType describe() {
   for (size_t at = type.bag_name.find("::"); at != std::string::npos; at = type.bag_name.find("::", at)) {
     type.bag_name.replace(at, 2, "/");
   }
+  type.ros2_msg_name = "teleop_msgs" + type.bag_name.substr(type.bag_name.find('/'));  // teleop/msg/X
   type.ros2_name = ros2_type_name(type.dds_name);
   type.max_serialized_size = support.m_typeSize;
   return type;
@@ -44,7 +45,7 @@ const std::vector<SampleType>& sample_types() {
 const SampleType* find_sample_type(std::string_view name) {
   const auto& types = sample_types();
   const auto it = std::find_if(types.begin(), types.end(), [&](const SampleType& t) {
-    return t.dds_name == name || t.bag_name == name || t.ros2_name == name;
+    return t.dds_name == name || t.bag_name == name || t.ros2_name == name || t.ros2_msg_name == name;
   });
   return it == types.end() ? nullptr : &*it;
 }
