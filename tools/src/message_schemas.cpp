@@ -48,9 +48,12 @@ void add_dependencies(std::string_view message, std::vector<std::string>& order)
   }
 }
 
-std::string short_name(const std::string& ros2_msg_name) { return ros2_msg_name.substr(ros2_msg_name.rfind('/') + 1); }
+// "teleop/msg/JointState" -> "JointState"
+std::string short_name(const transport::SampleType& type) { return type.bag_name.substr(type.bag_name.rfind('/') + 1); }
 
 }  // namespace
+
+std::string ros2_msg_name(const transport::SampleType& type) { return std::string(kPackage) + "msg/" + short_name(type); }
 
 std::string ros2_msg_schema(const std::string& message) {
   std::string schema(text_of(message));
@@ -72,8 +75,8 @@ bag::TopicInfo recorded_topic(const std::string& name, const transport::SampleTy
     topic.type = type.bag_name;
     return topic;
   }
-  topic.type = type.ros2_msg_name;
-  topic.schema = ros2_msg_schema(short_name(type.ros2_msg_name));
+  topic.type = ros2_msg_name(type);
+  topic.schema = ros2_msg_schema(short_name(type));
   topic.schema_encoding = "ros2msg";
   return topic;
 }

@@ -12,6 +12,10 @@ namespace teleop::tools {
 
 enum class RecordingFormat { kMcap, kSqlite3 };
 
+/// The ROS 2 message of a teleop type, "teleop_msgs/msg/JointState" (transport's
+/// find_sample_type finds the type by it too).
+std::string ros2_msg_name(const transport::SampleType& type);
+
 /// The ros2msg schema of a message of idl/ros2/teleop_msgs, e.g. "JointState": its .msg text,
 /// then each message it uses (transitively, once each, in order of first use) after a line of
 /// 80 '=' and a line "MSG: teleop_msgs/<Name>", as ROS 2's rosbag2 writes it. Throws

@@ -16,9 +16,6 @@ struct SampleType {
   std::string dds_name;
   /// The ROS 2 style name recordings store, e.g. "teleop/msg/JointState".
   std::string bag_name;
-  /// Its ROS 2 message (idl/ros2/teleop_msgs), e.g. "teleop_msgs/msg/JointState": the schema
-  /// name of its MCAP recordings (metadata only: the DDS type names on the wire do not change).
-  std::string ros2_msg_name;
   /// The DDS type name under ROS 2 naming (naming.h), e.g. "teleop_msgs::msg::dds_::JointState_".
   std::string ros2_name;
   /// The largest serialized size, CDR encapsulation included [bytes].
@@ -27,8 +24,8 @@ struct SampleType {
 
 /// Every sample type of idl/.
 const std::vector<SampleType>& sample_types();
-/// The type of that DDS name (plain or ROS 2 naming), ROS 2 style name or ROS 2 message name;
-/// null when it is not a teleop type.
+/// The type of that DDS name (plain or ROS 2 naming) or ROS 2 style name; null when it is not a
+/// teleop type.
 const SampleType* find_sample_type(std::string_view name);
 
 /// A topic of topics.h with a fixed name: what a recorder can subscribe to before any writer
