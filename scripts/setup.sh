@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages teleop needs. Idempotent: does nothing when all are present.
-#   scripts/setup.sh          everything: build, demo, tests, benchmarks (scripts/run_tests.sh)
+#   scripts/setup.sh          everything: build, demo, tests, benchmarks (scripts/run_tests.sh), and
+#                             the npm packages of the MCAP interop tests (into build/npm)
 #   scripts/setup.sh --demo   what building and running the demo needs (scripts/run_demo.sh)
 set -euo pipefail
 
@@ -12,8 +13,8 @@ demo_packages=(
   libmujoco-dev libqhull-dev libeigen3-dev libyaml-cpp-dev libspdlog-dev libcli11-dev libssl-dev
   # Debian's mujoco CMake config finds OpenGL (its viewer's); a fresh machine has no GL headers
   libgl-dev libopengl-dev libglx-dev
-  # recordings of the bus (bag/, docs/recording.md)
-  libsqlite3-dev
+  # recordings of the bus (bag/, docs/recording.md): sqlite3 bags; MCAP chunks and their CRCs
+  libsqlite3-dev libzstd-dev liblz4-dev zlib1g-dev
   # figures of runs and experiments (teleop plot, teleop experiment; docs/plots.md)
   python3-matplotlib
   # the 3D view and videos of runs (teleop view, teleop render; docs/view.md): its window, its PNGs
@@ -44,6 +45,30 @@ case "${1:-}" in
   *) echo "usage: $0 [--demo]" >&2; exit 2 ;;
 esac
 
+# the reference MCAP readers of the interop tests (test/bag/mcap_interop): npm packages for the
+# tests only, installed into build/npm (never needed to build or run teleop); Debian's nodejs and
+# npm when the machine has no node
+install_test_npm() {
+  local root dest
+  root="$(cd "$(dirname "$0")/.." && pwd)"
+  dest="$root/build/npm"
+  if cmp -s "$root/test/bag/mcap_interop/package-lock.json" "$dest/node_modules/.package-lock.json.source" 2>/dev/null; then
+    echo "setup: the interop tests' npm packages present"
+    return
+  fi
+  if ! command -v npm >/dev/null; then
+    DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends nodejs npm
+  fi
+  mkdir -p "$dest"
+  cp "$root/test/bag/mcap_interop/package.json" "$root/test/bag/mcap_interop/package-lock.json" "$dest/"
+  (cd "$dest" && npm ci --no-audit --no-fund --ignore-scripts --loglevel=error)
+  cp "$root/test/bag/mcap_interop/package-lock.json" "$dest/node_modules/.package-lock.json.source"
+  echo "setup: the interop tests' npm packages installed into $dest"
+}
+
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+
 missing=()
 for pkg in "${packages[@]}"; do
   # a package counts as present only when dpkg reports it fully installed
@@ -54,11 +79,9 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#packages[@]} packages present"
-  exit 0
+else
+  echo "setup: installing ${missing[*]}"
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
-
-sudo_cmd=()
-if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
-echo "setup: installing ${missing[*]}"
-"${sudo_cmd[@]}" apt-get update -qq
-DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+if [ -z "${1:-}" ]; then install_test_npm; fi

@@ -270,6 +270,10 @@ void BagWriter::write(int topic_id, int64_t recv_ns, int64_t recv_mono_ns, const
   impl_->write(topic_id, recv_ns, recv_mono_ns, writer, data, size);
 }
 
+void BagWriter::write(const MessageToWrite& m) {
+  impl_->write(m.topic_id, m.recv_ns, m.recv_mono_ns, m.writer, m.data, m.size);
+}
+
 void BagWriter::poll() { impl_->poll(); }
 void BagWriter::flush() { impl_->flush(); }
 void BagWriter::close() { impl_->close(); }

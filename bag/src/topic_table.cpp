@@ -8,7 +8,10 @@ std::vector<TopicInfo> read_topics(SqliteDb& db) {
   SqliteStatement query(db, "SELECT id, name, type, offered_qos_profiles FROM topics ORDER BY id");
   std::vector<TopicInfo> topics;
   while (query.step("reading the topics")) {
-    TopicInfo topic{query.column_text(1), query.column_text(2), query.column_text(3)};
+    TopicInfo topic;
+    topic.name = query.column_text(1);
+    topic.type = query.column_text(2);
+    topic.qos_profile = query.column_text(3);
     const int64_t id = query.column_int64(0);
     // a topic is found by its index: ids with gaps (a topic deleted by hand) are not read
     if (id != static_cast<int64_t>(topics.size()) + 1) {

@@ -40,9 +40,25 @@ BusCommands::BusCommands(CLI::App& app) : app_(&app) {
 }
 
 void BusCommands::add_record() {
-  record_ = app_->add_subcommand("record",
-                                 "record the bus (every teleop topic, or those given) into a rosbag2-layout folder");
-  record_->add_option("-o,--output", record_options_.dir, "the recording's folder (must not exist yet)")->required();
+  record_ = app_->add_subcommand(
+      "record", "record the bus (every teleop topic, or those given) into an MCAP file or a rosbag2 sqlite3 folder");
+  record_->add_option("-o,--output", record_options_.dir, "the recording: an MCAP file, e.g. run1.mcap (must not exist "
+                                                          "yet), or with --storage sqlite3 a folder")
+      ->required();
+  record_
+      ->add_option("--storage", record_options_.format, "mcap (default: one file, each topic's schema embedded) or "
+                                                        "sqlite3 (rosbag2's folder layout)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, teleop::tools::RecordingFormat>{{"mcap", teleop::tools::RecordingFormat::kMcap},
+                                                                {"sqlite3", teleop::tools::RecordingFormat::kSqlite3}}))
+      ->option_text("mcap|sqlite3");
+  record_
+      ->add_option("--compression", record_options_.compression, "an MCAP recording's chunks: zstd (default), lz4, none")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, teleop::bag::McapCompression>{
+          {"zstd", teleop::bag::McapCompression::kZstd},
+          {"lz4", teleop::bag::McapCompression::kLz4},
+          {"none", teleop::bag::McapCompression::kNone}}))
+      ->option_text("zstd|lz4|none");
   record_->add_option("--topics", record_options_.topics, "only these topics")->delimiter(',');
   record_->add_option("-d,--duration", record_options_.duration_s, "stop after this many seconds")
       ->check(CLI::PositiveNumber);
@@ -56,7 +72,8 @@ void BusCommands::add_record() {
 
 void BusCommands::add_replay() {
   replay_ = app_->add_subcommand("replay", "publish a recording again with its recorded timing");
-  replay_->add_option("recording", replay_options_.dir, "the recording's folder")->required();
+  replay_->add_option("recording", replay_options_.dir, "the recording (an MCAP file or a sqlite3 bag folder)")
+      ->required();
   replay_->add_option("--topics", replay_options_.topics, "only these topics")->delimiter(',');
   replay_->add_option("--rate", replay_options_.rate, "speed factor (2: twice as fast)")
       ->check(CLI::Range(0.01, 100.0));

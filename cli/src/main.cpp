@@ -3,7 +3,8 @@
 // `teleop reset NODE` clears a node's latched reflex, `teleop plot RUN_DIR` draws a run's figures,
 // `teleop hand-study STUDY.yaml` reproduces the SVH hand study in MuJoCo (hand_study_command.h),
 // `teleop fidelity-study STUDY.yaml` the coupling thesis's twin accuracy and wiping studies (fidelity_study_command.h);
-// `teleop topic`, `monitor`, `record`, `replay` (bus_commands.h) look at and keep the bus;
+// `teleop topic`, `monitor`, `record`, `replay` (bus_commands.h) look at and keep the bus,
+// `teleop bag info|convert|repair` (bag_commands.h) handle recordings;
 // `teleop view` shows the robot live, `teleop render RUN_DIR` makes a video of a run (view_command.h).
 #include <CLI/CLI.hpp>
 
@@ -20,6 +21,7 @@
 #include "teleop/launcher/launcher.h"
 #include "teleop/launcher/reset_request.h"
 #include "teleop/runtime/command_line_hint.h"
+#include "bag_commands.h"
 #include "bus_commands.h"
 #include "config_option.h"
 #include "fidelity_study_command.h"
@@ -119,6 +121,7 @@ int main(int argc, char** argv) {
   reset_cmd->add_option("--timeout", reset_options.timeout_s, "seconds to wait for the node to acknowledge")
       ->check(CLI::Range(0.1, 600.0));
   BusCommands bus_commands(app);
+  const teleop::cli::BagCommands bag_commands(app);
   const teleop::cli::PlotCommand plot(app);
   const teleop::cli::HandStudyCommand hand_study(app);
   const teleop::cli::FidelityStudyCommand fidelity_study(app);
@@ -131,6 +134,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (const auto rc = bus_commands.run()) return *rc;
+    if (const auto rc = bag_commands.run()) return *rc;
     if (const auto rc = view_commands.run()) return *rc;
     if (plot.parsed()) return plot.run();
     if (hand_study.parsed()) return hand_study.run();

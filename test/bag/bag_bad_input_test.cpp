@@ -52,11 +52,12 @@ TEST(BagBadInput, AFolderWithoutADatabaseIsNotABag) {
   EXPECT_NE(error.find("not a bag"), std::string::npos) << error;
 }
 
-TEST(BagBadInput, AMissingFolderOrAFileIsNotABag) {
+TEST(BagBadInput, AMissingFolderOrAFileThatIsNoMcapIsNotARecording) {
   BagDir bag;
-  EXPECT_NE(open_error(bag.dir()).find(bag.dir() + ": no such folder"), std::string::npos);
+  EXPECT_NE(open_error(bag.dir()).find(bag.dir() + ": no such file or folder"), std::string::npos);
   write_text(bag.parent() + "/file", "x");
-  EXPECT_NE(open_error(bag.parent() + "/file").find("not a folder"), std::string::npos);
+  EXPECT_NE(open_error(bag.parent() + "/file").find("file: not a recording (an MCAP file starts with"),
+            std::string::npos);
 }
 
 TEST(BagBadInput, MetadataNamingAMissingDatabase) {

@@ -69,7 +69,7 @@ TEST(BagFailure, AFullDiskWhileAddingATopicLosesNeitherTheTopicsBeforeNorTheWrit
   writer.add_topic(test::topic("a"));
   const std::string big_qos(128 * 1024, 'q');  // a topic row larger than the cap
   EXPECT_NE(error_of<BagError>([&] {
-              writer.add_topic({"b", "teleop/msg/B", big_qos});
+              writer.add_topic({"b", "teleop/msg/B", big_qos, "", ""});
             }).find("disk full"),
             std::string::npos);
   EXPECT_EQ(writer.add_topic(test::topic("c")), 2);  // b's id was never given out

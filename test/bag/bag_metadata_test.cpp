@@ -22,7 +22,7 @@ const char* const kQos = "- history: 3\n  depth: 0\n  reliability: 1\n";
 // 3 messages on "teleop/a" (with a QoS profile), 1 on "teleop/b", 1 topic without messages
 void record_three_topics(const std::string& dir) {
   BagWriter writer({dir});
-  writer.add_topic({"teleop/a", "teleop/msg/A", kQos});
+  writer.add_topic({"teleop/a", "teleop/msg/A", kQos, "", ""});
   writer.add_topic(topic("teleop/b"));
   writer.add_topic(topic("teleop/quiet"));
   const auto data = payload(300, 3);

@@ -49,7 +49,7 @@ TEST(BagRoundTrip, MessagesComeBackInReceiveTimeOrderWithTheirTopicsWritersAndTi
   auto messages = shuffled_messages();
   {
     BagWriter writer({bag.dir()});
-    EXPECT_EQ(writer.add_topic({"teleop/leader/joint_command", "teleop/msg/JointCommand", "- depth: 1\n"}), 1);
+    EXPECT_EQ(writer.add_topic({"teleop/leader/joint_command", "teleop/msg/JointCommand", "- depth: 1\n", "", ""}), 1);
     EXPECT_EQ(writer.add_topic(topic("state")), 2);
     EXPECT_EQ(writer.add_topic(topic("wrench")), 3);
     write_all(writer, messages);

@@ -61,7 +61,7 @@ inline std::vector<uint8_t> payload(size_t size, uint32_t seed) {
   return bytes;
 }
 
-inline TopicInfo topic(const std::string& name) { return {name, "teleop/msg/" + name, ""}; }
+inline TopicInfo topic(const std::string& name) { return {name, "teleop/msg/" + name, "", "", ""}; }
 
 /// Every selected message of a reader, in its order.
 inline std::vector<BagMessage> read_all(BagReader& reader) {

@@ -17,7 +17,7 @@ JointStateTrack JointStateTrack::from_bag(bag::BagReader& reader, const std::str
   JointStateTrack track;
   reader.select({id});
   bag::BagMessage m;
-  while (reader.next(m)) track.add(m.recv_mono_ns, m.data);
+  while (reader.next(m)) track.add(bag::pacing_time_ns(m), m.data);
   return track;
 }
 

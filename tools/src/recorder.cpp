@@ -14,6 +14,7 @@
 
 #include "bus.h"
 #include "teleop/bag/bag_writer.h"
+#include "teleop/bag/mcap_writer.h"
 #include "teleop/common/clock.h"
 #include "teleop/common/config.h"
 #include "teleop/common/did_you_mean.h"
@@ -30,6 +31,23 @@ struct Received {
   int64_t recv_mono_ns;
   transport::RawSample sample;
 };
+
+std::unique_ptr<bag::RecordingWriter> open_writer(const RecordOptions& options) {
+  if (options.format == RecordingFormat::kSqlite3) {
+    return std::make_unique<bag::BagWriter>(
+        bag::BagWriterOptions{options.dir, 200'000'000, 1'000'000'000, options.max_bytes});
+  }
+  bag::McapWriterOptions mcap{options.dir};
+  mcap.compression = options.compression;
+  mcap.max_bytes = options.max_bytes;
+  return std::make_unique<bag::McapWriter>(mcap);
+}
+
+// the writer's stamp: MCAP's publish_time (0 when the payload has no header to read it from)
+int64_t publish_time_ns(const transport::RawSample& s) {
+  HeaderView h;
+  return read_header(s.cdr, h) ? h.stamp_ns : 0;
+}
 
 // from Fast DDS's threads to the disk thread, bounded
 class DiskQueue {
@@ -119,7 +137,7 @@ class Recording {
       : options_(options),
         log_(log),
         queue_(options.queue_capacity),
-        bag_(bag::BagWriterOptions{options.dir, 200'000'000, 1'000'000'000, options.max_bytes}),
+        bag_(open_writer(options)),
         bus_(std::make_unique<Bus>(bus_options, "teleop_record")),
         disk_([this] { disk_loop(); }) {}
 
@@ -150,11 +168,11 @@ class Recording {
     bus_.reset();  // no sample arrives after this
     stop_disk();
     if (!failed()) guarded([&] { write_batch(std::chrono::milliseconds(0)); });  // what was still queued
-    guarded([&] { bag_.close(); });
+    guarded([&] { bag_->close(); });
     if (failed()) throw bag::BagError(error_ + "; what was recorded before stays readable in " + options_.dir);
     RecordResult result;
-    result.messages = bag_.stats().messages;
-    result.bytes = bag_.stats().bytes;
+    result.messages = bag_->stats().messages;
+    result.bytes = bag_->stats().bytes;
     result.dropped = queue_.dropped();
     result.missed = gaps_.missed();
     result.topics.assign(subscribed_.begin(), subscribed_.end());
@@ -169,7 +187,7 @@ class Recording {
     const transport::QosPreset qos = transport::topic_qos(name);
     const int id = [&] {
       std::lock_guard lock(bag_mutex_);
-      return bag_.add_topic({name, type.bag_name, qos_yaml(qos)});
+      return bag_->add_topic(recorded_topic(name, type, qos_yaml(qos), options_.format));
     }();
     bus_->participant().make_raw_reader(name, type, qos, [queue = &queue_, id](const transport::RawSample& s) {
       queue->push({id, s.reception_ns, monotonic_now_ns(), s});
@@ -183,11 +201,11 @@ class Recording {
     queue_.take(batch_, wait);
     std::lock_guard lock(bag_mutex_);
     for (const Received& r : batch_) {
-      bag_.write(r.topic_id, r.recv_ns, r.recv_mono_ns, r.sample.writer.bytes, r.sample.cdr.data(),
-                 r.sample.cdr.size());
+      bag_->write({r.topic_id, r.recv_ns, r.recv_mono_ns, publish_time_ns(r.sample), r.sample.writer.bytes,
+                   r.sample.cdr.data(), r.sample.cdr.size()});
       gaps_.add(r.topic_id, r.sample);
     }
-    if (batch_.empty()) bag_.poll();  // quiet: commit on time all the same, so a kill loses at most a period
+    if (batch_.empty()) bag_->poll();  // quiet: commit (write the chunk) on time all the same: a kill loses at most a period
   }
 
   void disk_loop() {
@@ -212,7 +230,7 @@ class Recording {
   const RecordOptions& options_;
   FILE* log_;
   DiskQueue queue_;  // before the bus: its readers push until the bus is gone
-  bag::BagWriter bag_;
+  std::unique_ptr<bag::RecordingWriter> bag_;
   std::mutex bag_mutex_;  // the disk thread writes, the recording's thread adds topics
   GapCounter gaps_;
   std::vector<Received> batch_;

@@ -88,9 +88,10 @@ int64_t play_once(bag::BagReader& reader, std::map<int, transport::RawWriter>& w
   bag::BagMessage m;
   int64_t first_ns = -1;
   while (!runtime::shutdown_requested() && reader.next(m)) {
-    if (first_ns < 0) first_ns = m.recv_mono_ns;
+    const int64_t recorded_ns = bag::pacing_time_ns(m);
+    if (first_ns < 0) first_ns = recorded_ns;
     const int64_t due_ns =
-        start_ns + static_cast<int64_t>(static_cast<double>(m.recv_mono_ns - first_ns) / options.rate);
+        start_ns + static_cast<int64_t>(static_cast<double>(recorded_ns - first_ns) / options.rate);
     sleep_until_mono(due_ns);
     const int64_t now_ns = monotonic_now_ns();
     if (!options.keep_stamps) restamp_header(m.data, system_now_ns(), now_ns);

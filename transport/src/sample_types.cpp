@@ -29,6 +29,14 @@ bool named(std::string_view topic, const TopicSpec<T>& spec) {
   return topic == spec.name;
 }
 
+// the ROS 2 message of idl/ros2/teleop_msgs, as MCAP recordings name their schemas
+bool is_ros2_msg_name(const SampleType& type, std::string_view name) {
+  constexpr std::string_view kPackage = "teleop_msgs";  // teleop/msg/X -> teleop_msgs/msg/X
+  const std::string_view rest = std::string_view(type.bag_name).substr(type.bag_name.find('/'));
+  return name.size() == kPackage.size() + rest.size() && name.substr(0, kPackage.size()) == kPackage &&
+         name.substr(kPackage.size()) == rest;
+}
+
 }  // namespace
 
 const std::vector<SampleType>& sample_types() {
@@ -44,7 +52,7 @@ const std::vector<SampleType>& sample_types() {
 const SampleType* find_sample_type(std::string_view name) {
   const auto& types = sample_types();
   const auto it = std::find_if(types.begin(), types.end(), [&](const SampleType& t) {
-    return t.dds_name == name || t.bag_name == name || t.ros2_name == name;
+    return t.dds_name == name || t.bag_name == name || t.ros2_name == name || is_ros2_msg_name(t, name);
   });
   return it == types.end() ? nullptr : &*it;
 }

@@ -1,6 +1,8 @@
 #pragma once
-// Reads a bag folder recorded by BagWriter (or a plain rosbag2 sqlite3 bag of one file: then
-// recv_mono_ns is 0 and the writer unknown), docs/recording.md.
+// Reads a recording, docs/recording.md: an MCAP file (recorded by McapWriter or any MCAP writer
+// of CDR messages: recv_mono_ns is 0 and the writer unknown; read through its summary when it has
+// one, else streamed up to its last complete chunk), or a bag folder recorded by BagWriter (or a
+// plain rosbag2 sqlite3 bag of one file: then recv_mono_ns is 0 and the writer unknown).
 
 #include <cstdint>
 #include <memory>
@@ -15,11 +17,13 @@ namespace teleop::bag {
 
 class BagReader {
  public:
-  /// Opens and validates the bag: metadata.yaml (when missing the database is read alone and
+  /// Opens `path`: a file starting with MCAP's magic is an MCAP recording (its records checked as
+  /// they are read, its summary's CRC checked); a folder is a sqlite3 bag. Validates a bag:
+  /// metadata.yaml (when missing the database is read alone and
   /// warning() says so), its version, the database (opens, `PRAGMA quick_check` passes, the
   /// tables are there, the format is not newer than ours, every message's topic exists).
   /// Throws BagError naming the file and the problem.
-  explicit BagReader(const std::string& dir);
+  explicit BagReader(const std::string& path);
   ~BagReader();
   BagReader(const BagReader&) = delete;
   BagReader& operator=(const BagReader&) = delete;
@@ -48,7 +52,10 @@ class BagReader {
   /// Empty, or what the reader noticed but could read anyway, e.g. "metadata.yaml missing (the
   /// recorder was killed?): read from the database". Several notes are joined by "; ".
   const std::string& warning() const;
+  /// The file that holds the messages: the bag's database, the MCAP file.
   const std::string& db_path() const;
+  /// "sqlite3", or "mcap" with its chunks' compression, e.g. "mcap (zstd)".
+  std::string format() const;
 
  private:
   class Impl;

@@ -3,6 +3,7 @@
 // wire (from the 4-byte encapsulation header on), with when and from which writer they came.
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -18,6 +19,10 @@ struct TopicInfo {
   std::string name;         ///< "teleop/leader/joint_command"
   std::string type;         ///< ROS-style type name, e.g. "teleop/msg/JointCommand"
   std::string qos_profile;  ///< offered QoS as YAML text (rosbag2's offered_qos_profiles), may be ""
+  /// The type's definition in `schema_encoding` ("ros2msg": the .msg text with its dependencies
+  /// appended, as ROS 2 records it in MCAP); "" when unknown. A sqlite3 bag keeps none.
+  std::string schema;
+  std::string schema_encoding;
 };
 
 /// One recorded message.
@@ -25,8 +30,24 @@ struct BagMessage {
   int topic_id = 0;
   int64_t recv_ns = 0;        ///< receive time, CLOCK_REALTIME, ns since the Unix epoch
   int64_t recv_mono_ns = 0;   ///< receive time, CLOCK_MONOTONIC of the recording host (0: unknown)
-  WriterGuid writer{};        ///< all zero: unknown (a bag not recorded by teleop)
+  int64_t publish_ns = 0;     ///< when the writer published it (its header stamp), CLOCK_REALTIME (0: unknown)
+  WriterGuid writer{};        ///< all zero: unknown (a bag not recorded by teleop, an MCAP recording)
   std::vector<uint8_t> data;  ///< the serialized CDR payload, encapsulation header included
+};
+
+/// The receive time a replay paces messages by: the monotonic one when it was recorded (immune
+/// to clock steps), else the realtime one (MCAP recordings, plain rosbag2 bags).
+inline int64_t pacing_time_ns(const BagMessage& m) { return m.recv_mono_ns != 0 ? m.recv_mono_ns : m.recv_ns; }
+
+/// A message handed to a RecordingWriter: its times, writer and serialized payload.
+struct MessageToWrite {
+  int topic_id = 0;
+  int64_t recv_ns = 0;       ///< as BagMessage
+  int64_t recv_mono_ns = 0;  ///< as BagMessage
+  int64_t publish_ns = 0;    ///< as BagMessage
+  WriterGuid writer{};
+  const uint8_t* data = nullptr;
+  size_t size = 0;
 };
 
 /// What a BagWriter has appended so far (committed or in the open transaction).

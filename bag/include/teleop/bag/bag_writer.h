@@ -11,6 +11,7 @@
 #include "teleop/bag/bag_error.h"
 #include "teleop/bag/bag_format.h"
 #include "teleop/bag/bag_types.h"
+#include "teleop/bag/recording_writer.h"
 
 namespace teleop::bag {
 
@@ -26,19 +27,19 @@ struct BagWriterOptions {
 /// One bag being recorded. Every failure throws BagError naming the file; a full disk (or the
 /// max_db_bytes cap) throws "... disk full ...", and everything committed before stays readable.
 /// A writer killed mid-recording loses at most the messages of its open transaction.
-class BagWriter {
+class BagWriter : public RecordingWriter {
  public:
   /// Creates the folder, the database (WAL journal, synchronous NORMAL: a commit survives the
   /// process being killed) and an initial metadata.yaml.
   explicit BagWriter(BagWriterOptions options);
   /// close() if not closed; never throws.
-  ~BagWriter();
+  ~BagWriter() override;
   BagWriter(const BagWriter&) = delete;
   BagWriter& operator=(const BagWriter&) = delete;
 
   /// The topic's id (1, 2, ... in the order added); the same name again returns the same id.
   /// Commits the open transaction with the new topic, so that a topic is never lost once added.
-  int add_topic(const TopicInfo& topic);
+  int add_topic(const TopicInfo& topic) override;
 
   /// Appends one message to the open transaction; commits when commit_period_ns passed since the
   /// last commit (by CLOCK_MONOTONIC) and rewrites metadata.yaml when metadata_period_ns passed.
@@ -46,20 +47,23 @@ class BagWriter {
   /// same instant on CLOCK_MONOTONIC. An unknown topic id throws.
   void write(int topic_id, int64_t recv_ns, int64_t recv_mono_ns, const WriterGuid& writer, const uint8_t* data,
              size_t size);
+  /// The same, as RecordingWriter (the publish time is not kept in this layout).
+  void write(const MessageToWrite& message) override;
 
   /// Commits and rewrites metadata.yaml if their periods have passed, as write() does: for a
   /// caller whose bus is quiet (no write() to do it) calling it now and then.
-  void poll();
+  void poll() override;
 
   /// Commits now and rewrites metadata.yaml.
   void flush();
 
   /// flush(), then finalizes the database (its WAL folded back in: one self-contained file).
   /// Idempotent. Releases everything even when the flush throws.
-  void close();
+  void close() override;
 
-  const BagStats& stats() const;
+  const BagStats& stats() const override;
   const std::string& db_path() const;
+  const std::string& data_path() const override { return db_path(); }
   const std::string& metadata_path() const;
 
  private:

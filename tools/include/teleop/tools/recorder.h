@@ -1,20 +1,27 @@
 #pragma once
-// `teleop record -o DIR`: every teleop topic on the bus (or those chosen), as the serialized
-// samples with their receive times and writers, into a recording in rosbag2's sqlite3 layout
-// (bag/). Topics are subscribed as discovery finds them, so nodes may start after the recorder.
+// `teleop record -o PATH`: every teleop topic on the bus (or those chosen), as the serialized
+// samples with their receive times, into an MCAP file with each type's ROS 2 schema (default) or
+// a folder in rosbag2's sqlite3 layout with the writers too (bag/, docs/recording.md). Topics are
+// subscribed as discovery finds them, so nodes may start after the recorder.
 
 #include <cstdint>
 #include <cstdio>
 #include <string>
 #include <vector>
 
+#include "teleop/bag/mcap_writer.h"
+#include "teleop/tools/message_schemas.h"
 #include "teleop/tools/topic_tools.h"
 
 namespace teleop::tools {
 
 struct RecordOptions {
-  /// The recording's folder (created; must not exist or be empty).
+  /// The recording: an MCAP file, or a sqlite3 bag's folder (created; must not exist, or for a
+  /// folder be empty).
   std::string dir;
+  RecordingFormat format = RecordingFormat::kMcap;
+  /// An MCAP recording's chunks.
+  bag::McapCompression compression = bag::McapCompression::kZstd;
   /// Only these topics; empty: every teleop topic.
   std::vector<std::string> topics;
   /// Stop after this long (0: until interrupted).
@@ -22,7 +29,7 @@ struct RecordOptions {
   /// Samples waiting for the disk at most; beyond, a sample is dropped and counted (memory stays
   /// bounded when the disk cannot keep up).
   size_t queue_capacity = 1 << 17;
-  /// Stop with an error once the database would grow beyond this [bytes], as on a full disk
+  /// Stop with an error once the recording would grow beyond this [bytes], as on a full disk
   /// (what was recorded stays readable); 0: no cap.
   int64_t max_bytes = 0;
 };

@@ -1,0 +1,24 @@
+#pragma once
+// `teleop bag info|convert|repair`: a recording summarised, converted between MCAP and rosbag2's
+// sqlite3 layout, or an MCAP file a killed recorder left given its summary (docs/tools.md).
+
+#include <cstdint>
+#include <string>
+
+#include "teleop/tools/message_schemas.h"
+
+namespace teleop::tools {
+
+/// The recording's format and compression, duration, message count and its topics with type
+/// and count, as text. Throws bag::BagError naming the file.
+std::string bag_info(const std::string& path);
+
+/// Copies the recording `in` into a new one at `out` of `format` (a folder for sqlite3, a file
+/// for MCAP), teleop's types renamed and given their schemas as `format` keeps them. Returns the
+/// messages copied.
+uint64_t convert_recording(const std::string& in, const std::string& out, RecordingFormat format);
+
+/// The format a path names: a ".mcap" file is MCAP, anything else a sqlite3 bag folder.
+RecordingFormat format_of_path(const std::string& path);
+
+}  // namespace teleop::tools
