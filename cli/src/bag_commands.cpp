@@ -2,11 +2,12 @@
 
 #include "teleop/bag/recording_copy.h"
 #include "teleop/tools/bag_tools.h"
+#include "teleop/tools/recording_csv.h"
 
 namespace teleop::cli {
 
 BagCommands::BagCommands(CLI::App& app) {
-  CLI::App* bag = app.add_subcommand("bag", "recordings (MCAP files, sqlite3 bag folders): info, convert, repair");
+  CLI::App* bag = app.add_subcommand("bag", "recordings (MCAP files, sqlite3 bag folders): info, convert, repair, export");
   bag->require_subcommand(1);
   info_ = bag->add_subcommand("info", "format, compression, duration and each topic's type and count");
   info_->add_option("recording", path_, "an MCAP file or a sqlite3 bag folder")->required();
@@ -16,7 +17,33 @@ BagCommands::BagCommands(CLI::App& app) {
   convert_->add_option("out", out_, "the recording to write (must not exist)")->required();
   repair_ = bag->add_subcommand("repair", "give an MCAP file that a killed recorder left its summary and indexes");
   repair_->add_option("file", path_, "the MCAP file (rewritten in place)")->required();
+  export_ = bag->add_subcommand("export", "write each topic's messages as a CSV file, fields as columns");
+  export_->add_option("recording", path_, "an MCAP file or a sqlite3 bag folder")->required();
+  export_->add_option("-o,--out", out_, "folder for the CSV files (default: the recording's path + '_csv')");
+  export_->add_option("--topics", topics_, "only these topics (default: all)")->delimiter(',');
 }
+
+namespace {
+
+int print_export(const tools::CsvExport& result) {
+  for (const tools::CsvTopicFile& f : result.files) {
+    std::printf("wrote %s: %llu rows", f.path.c_str(), static_cast<unsigned long long>(f.rows));
+    if (f.undecodable > 0) std::printf(", %llu messages undecodable", static_cast<unsigned long long>(f.undecodable));
+    if (f.values_left_out > 0) {
+      std::printf(", %llu values of fields its header lacks left out", static_cast<unsigned long long>(f.values_left_out));
+    }
+    std::printf("\n");
+  }
+  for (const std::string& why : result.skipped) std::printf("skipped %s\n", why.c_str());
+  return 0;
+}
+
+std::string export_dir(std::string recording) {
+  while (recording.size() > 1 && recording.back() == '/') recording.pop_back();
+  return recording + "_csv";
+}
+
+}  // namespace
 
 std::optional<int> BagCommands::run() const {
   if (info_->parsed()) {
@@ -34,6 +61,7 @@ std::optional<int> BagCommands::run() const {
                 static_cast<unsigned long long>(n));
     return 0;
   }
+  if (export_->parsed()) return print_export(tools::export_csv(path_, out_.empty() ? export_dir(path_) : out_, topics_));
   return std::nullopt;
 }
 

@@ -1,10 +1,12 @@
 #pragma once
-// `teleop bag info|convert|repair`: the recordings' own commands (teleop/tools/bag_tools.h).
+// `teleop bag info|convert|repair|export`: the recordings' own commands (teleop/tools/bag_tools.h,
+// teleop/tools/recording_csv.h).
 
 #include <CLI/CLI.hpp>
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace teleop::cli {
 
@@ -19,8 +21,10 @@ class BagCommands {
   CLI::App* info_ = nullptr;
   CLI::App* convert_ = nullptr;
   CLI::App* repair_ = nullptr;
+  CLI::App* export_ = nullptr;
   std::string path_;
   std::string out_;
+  std::vector<std::string> topics_;
 };
 
 }  // namespace teleop::cli

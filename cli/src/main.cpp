@@ -4,7 +4,7 @@
 // `teleop hand-study STUDY.yaml` reproduces the SVH hand study in MuJoCo (hand_study_command.h),
 // `teleop fidelity-study STUDY.yaml` the coupling thesis's twin accuracy and wiping studies (fidelity_study_command.h);
 // `teleop topic`, `monitor`, `record`, `replay` (bus_commands.h) look at and keep the bus,
-// `teleop bag info|convert|repair` (bag_commands.h) handle recordings;
+// `teleop bag info|convert|repair|export` (bag_commands.h) handle recordings;
 // `teleop view` shows the robot live, `teleop render RUN_DIR` makes a video of a run (view_command.h).
 #include <CLI/CLI.hpp>
 

@@ -1,5 +1,6 @@
 #pragma once
-// `teleop plot RUN_DIR [-o OUT_DIR]`: the figures of a run's traces (docs/plots.md).
+// `teleop plot RUN_DIR|RECORDING [-o OUT_DIR]`: the figures of a run's traces, or of a recording's
+// topics exported as CSV (docs/plots.md).
 
 #include <CLI/CLI.hpp>
 

@@ -118,6 +118,10 @@ void plot_run(const PlotTool& tool, const std::string& run_dir, const std::strin
   run_package(tool, {"run", run_dir, out_dir}, run_dir);
 }
 
+void plot_recording_csv(const PlotTool& tool, const std::string& csv_dir, const std::string& out_dir) {
+  run_package(tool, {"recording", csv_dir, out_dir}, csv_dir);
+}
+
 void plot_results(const PlotTool& tool, const std::string& csv_path) {
   run_package(tool, {"results", csv_path}, csv_path);
 }

@@ -1,6 +1,8 @@
 """Figures of teleop runs (docs/plots.md); `teleop plot` and `teleop experiment` run this.
 
   python3 scripts/teleop_plot run RUN_DIR [OUT_DIR]     the traces of one run (<node>.csv) -> OUT_DIR/*.png
+  python3 scripts/teleop_plot recording CSV_DIR [OUT_DIR]
+                                                       a recording exported by `teleop bag export` -> OUT_DIR/<topic>_*.png
   python3 scripts/teleop_plot results CSV [OUT_DIR]     an experiment's results -> OUT_DIR/<csv name>_<metric>.png
   python3 scripts/teleop_plot hand TRACE_CSV [OUT_DIR]  the hand study's trace -> OUT_DIR/hand_tip_force.png, hand_joints.png
   python3 scripts/teleop_plot fidelity TRACE_CSV SEGMENTS_CSV [OUT_DIR]
@@ -27,6 +29,9 @@ def main():
     run = commands.add_parser("run", help="the figures of one run's traces")
     run.add_argument("run_dir")
     run.add_argument("out_dir", nargs="?", help="default: RUN_DIR")
+    recording = commands.add_parser("recording", help="the figures of a recording exported as CSV")
+    recording.add_argument("csv_dir")
+    recording.add_argument("out_dir", nargs="?", help="default: CSV_DIR")
     results = commands.add_parser("results", help="one figure per metric of an experiment's results CSV")
     results.add_argument("csv")
     results.add_argument("out_dir", nargs="?", help="default: the CSV's folder")
@@ -57,6 +62,7 @@ def main():
     from fidelity_figures import FidelityTraceError, fidelity_figures
     from hand_figures import HandTraceError, hand_figures
     from parti_figures import PartiTraceError, parti_figures
+    from recording_figures import RecordingCsvError, recording_figures
     from results_figures import ResultsError, results_figures
     from run_figures import FIGURES, Skip
     from run_traces import Run, TraceError
@@ -75,6 +81,8 @@ def main():
                     write(figure(traces), args.out_dir or args.run_dir)
                 except Skip as why:
                     print(f"teleop plot: skipped {name}: {why} ({args.run_dir})")
+        elif args.command == "recording":
+            write(recording_figures(args.csv_dir), args.out_dir or args.csv_dir)
         elif args.command == "fidelity":
             write(fidelity_figures(args.csv, args.segments), args.out_dir or os.path.dirname(os.path.abspath(args.csv)))
         elif args.command == "parti":
@@ -88,7 +96,7 @@ def main():
             out_dir = args.out_dir or os.path.dirname(os.path.abspath(args.csv))
             write(results_figures(args.csv, stem), out_dir, stem + "_")
     except (TraceError, ResultsError, HandTraceError, FidelityTraceError, PartiTraceError, WipingCsvError,
-            OSError) as e:
+            RecordingCsvError, OSError) as e:
         print(f"teleop plot: {e}", file=sys.stderr)
         return EXIT_ERROR
     return 0

@@ -1,6 +1,7 @@
 // The figures (docs/plots.md) as real processes: `teleop experiment` draws each run's figures and
 // one per metric, `teleop plot` draws a run's again elsewhere; png_check.py opens every PNG and
-// checks its size and that its plot area shows data. A folder without traces is an error naming it.
+// checks its size and that its plot area shows data; a recording's topics are exported as CSV and
+// drawn. A folder without traces is an error naming it.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -55,6 +56,23 @@ TEST(PlotProcess, TheExperimentDrawsItsRunsAndMetricsAndPlotDrawsARunAgain) {
     EXPECT_NE(plot.output.find("wrote " + f), std::string::npos) << plot.output;
     EXPECT_GT(fs::file_size(f), 10'000u) << f;
   }
+}
+
+// a recording as `teleop record` writes it (three samples of every teleop type): `teleop bag
+// export` writes its topics as CSV, `teleop plot` exports and draws them
+TEST(PlotProcess, ARecordingsTopicsAreExportedAndDrawn) {
+  const std::string dir = make_temp_dir();
+  const std::string recording = dir + "/r.mcap";
+  ASSERT_EQ(run_process({bin("write_sample_mcap"), recording}, std::chrono::seconds(30)).exit_status, 0);
+  const ProcessResult exported = run_process({bin("teleop"), "bag", "export", recording}, std::chrono::seconds(30));
+  EXPECT_EQ(exported.exit_status, 0) << exported.output;
+  const std::string state_csv = recording + "_csv/teleop.sample.teleop.msg.JointState.csv";
+  EXPECT_NE(exported.output.find("wrote " + state_csv + ": 3 rows"), std::string::npos) << exported.output;
+
+  const ProcessResult plot = run_process({bin("teleop"), "plot", recording}, std::chrono::seconds(60));
+  EXPECT_EQ(plot.exit_status, 0) << plot.output;
+  const std::string out = recording + "_plots/teleop.sample.teleop.msg.";
+  expect_figures_drawn({out + "JointState_positions.png", out + "WrenchStamped_wrench.png", out + "JointTorque_torques.png"});
 }
 
 TEST(PlotProcess, AFolderWithoutTracesIsAnErrorNamingIt) {

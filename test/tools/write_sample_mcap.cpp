@@ -40,6 +40,20 @@ msg::JointState joint_state() {
   return s;
 }
 
+// with values, so that a figure of them (`teleop plot` of a recording) shows lines
+msg::WrenchStamped wrench() {
+  msg::WrenchStamped w;
+  w.force_n().z(-12.5);
+  w.torque_nm().x(0.25);
+  return w;
+}
+
+msg::JointTorque joint_torque() {
+  msg::JointTorque t;
+  t.tau_nm({1.5, 0.5, -0.5});
+  return t;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -56,8 +70,8 @@ int main(int argc, char** argv) {
   add_samples(writer, joint_state());
   add_samples(writer, msg::JointCommand());
   add_samples(writer, msg::CartesianCommand());
-  add_samples(writer, msg::WrenchStamped());
-  add_samples(writer, msg::JointTorque());
+  add_samples(writer, wrench());
+  add_samples(writer, joint_torque());
   add_samples(writer, msg::HandCommand());
   add_samples(writer, msg::HandState());
   add_samples(writer, msg::NodeStatus());

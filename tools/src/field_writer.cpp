@@ -2,12 +2,14 @@
 
 namespace teleop::tools {
 
-std::string FieldWriter::path_of(std::string_view name) const {
+std::string dotted_path(const std::vector<std::string>& open, std::string_view name) {
   std::string path;
-  for (const std::string& p : path_) path += (path.empty() || p.front() == '[' ? "" : ".") + p;
+  for (const std::string& p : open) path += (path.empty() || p.front() == '[' ? "" : ".") + p;
   if (!name.empty()) path += (path.empty() || name.front() == '[' ? "" : ".") + std::string(name);
   return path;
 }
+
+std::string FieldWriter::path_of(std::string_view name) const { return dotted_path(path_, name); }
 
 int FieldWriter::level_of(const std::string& path) const {
   const auto depth = [](const std::string& p) {
@@ -64,6 +66,12 @@ void FieldWriter::value(std::string_view name, std::string_view text) {
     item_pending_.back() = false;
   }
   text_ += indent + std::string(name) + ": " + std::string(text) + "\n";
+}
+
+void FieldWriter::values(std::string_view name, const std::vector<std::string>& items) {
+  std::string text = "[";
+  for (const std::string& item : items) text += (text.size() > 1 ? ", " : "") + item;
+  value(name, std::string_view(text + "]"));
 }
 
 }  // namespace teleop::tools

@@ -2,48 +2,31 @@
 // Writes a sample's fields as YAML while the walkers in sample_text.cpp visit them, or only the
 // one field a dotted path selects.
 
-#include <spdlog/fmt/fmt.h>
-
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "field_visitor.h"
+
 namespace teleop::tools {
 
-class FieldWriter {
+class FieldWriter final : public FieldVisitor {
  public:
   /// `filter`: a dotted path ("header.seq", "links[0].peer"); empty: every field.
   explicit FieldWriter(std::string filter) : filter_(std::move(filter)) {}
 
-  /// Opens a nested struct named `name`.
-  void begin(std::string_view name);
-  /// Opens item `index` of a sequence of structs (the sequence opened with begin()).
-  void begin_item(size_t index);
-  void end();
-
-  void value(std::string_view name, std::string_view text);
-  void value(std::string_view name, double v) { value(name, std::string_view(number(v))); }
-  void value(std::string_view name, int64_t v) { value(name, std::string_view(fmt::format("{}", v))); }
-  void value(std::string_view name, uint64_t v) { value(name, std::string_view(fmt::format("{}", v))); }
-  void value(std::string_view name, bool v) { value(name, std::string_view(v ? "true" : "false")); }
-  /// A sequence of numbers (or of anything `format` turns into text) as a flow list.
-  template <typename Seq, typename Format>
-  void list(std::string_view name, const Seq& seq, Format format) {
-    std::string text = "[";
-    for (const auto& v : seq) text += (text.size() > 1 ? ", " : "") + std::string(format(v));
-    value(name, std::string_view(text + "]"));
-  }
-  template <typename Seq>
-  void list(std::string_view name, const Seq& seq) {
-    list(name, seq, [](double v) { return number(v); });
-  }
+  using FieldVisitor::value;
+  void begin(std::string_view name) override;
+  void begin_item(size_t index) override;
+  void end() override;
+  void value(std::string_view name, std::string_view text) override;
+  /// As a flow list, "[1, 2, 3]".
+  void values(std::string_view name, const std::vector<std::string>& items) override;
 
   /// The text written; for a filter, the selected field's value (its block for a struct).
   const std::string& text() const { return text_; }
   /// Whether the filter selected anything.
   bool matched() const { return matched_; }
-
-  static std::string number(double v) { return fmt::format("{:.9g}", v); }
 
  private:
   std::string path_of(std::string_view name) const;

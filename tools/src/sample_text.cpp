@@ -6,6 +6,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "field_columns.h"
 #include "field_writer.h"
 #include "teleop/runtime/status_names.h"
 #include "teleop/transport/type_support.h"
@@ -13,7 +14,7 @@
 namespace teleop::tools {
 namespace {
 
-using W = FieldWriter;
+using W = FieldVisitor;
 
 std::string_view text(const msg::Name& name) { return name.c_str(); }
 
@@ -224,7 +225,7 @@ void walk(const msg::ObjectPose& s, W& w) {
 }
 
 template <typename T>
-std::string text_of(const std::vector<uint8_t>& cdr, std::string_view field) {
+T deserialized(const std::vector<uint8_t>& cdr) {
   typename transport::PubSubTypeOf<T>::type support;
   eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<uint32_t>(cdr.size()));
   std::memcpy(payload.data, cdr.data(), cdr.size());
@@ -237,12 +238,7 @@ std::string text_of(const std::vector<uint8_t>& cdr, std::string_view field) {
     ok = false;  // fastcdr throws on a buffer too short for what it reads
   }
   if (!ok) throw std::runtime_error("the bytes do not hold a " + std::string(support.getName()));
-  FieldWriter writer{std::string(field)};
-  walk(sample, writer);
-  if (!field.empty() && !writer.matched()) {
-    throw std::runtime_error(std::string(support.getName()) + " has no field '" + std::string(field) + "'");
-  }
-  return writer.text();
+  return sample;
 }
 
 template <typename... T>
@@ -252,12 +248,14 @@ using AllTypes = TypeList<msg::JointState, msg::JointCommand, msg::CartesianComm
                           msg::JointTorque, msg::HandCommand, msg::HandState, msg::NodeStatus, msg::ResetRequest,
                           msg::TdpaEnergy, msg::GeomDistances, msg::ObjectPose>;
 
+// the sample's fields, deserialized as the type it is, to `visitor`
 template <typename T, typename... Rest>
-std::string dispatch(TypeList<T, Rest...>, const transport::SampleType& type, const std::vector<uint8_t>& cdr,
-                     std::string_view field) {
-  if (type.dds_name == typename transport::PubSubTypeOf<T>::type().getName()) return text_of<T>(cdr, field);
-  if constexpr (sizeof...(Rest) > 0) {
-    return dispatch(TypeList<Rest...>{}, type, cdr, field);
+void visit_fields(TypeList<T, Rest...>, const transport::SampleType& type, const std::vector<uint8_t>& cdr,
+                  FieldVisitor& visitor) {
+  if (type.dds_name == typename transport::PubSubTypeOf<T>::type().getName()) {
+    walk(deserialized<T>(cdr), visitor);
+  } else if constexpr (sizeof...(Rest) > 0) {
+    visit_fields(TypeList<Rest...>{}, type, cdr, visitor);
   } else {
     throw std::runtime_error("no text form for type " + type.dds_name);
   }
@@ -296,7 +294,19 @@ bool is_cdr(const std::vector<uint8_t>& cdr) { return cdr.size() >= kHeaderEnd &
 }  // namespace
 
 std::string sample_text(const transport::SampleType& type, const std::vector<uint8_t>& cdr, std::string_view field) {
-  return dispatch(AllTypes{}, type, cdr, field);
+  FieldWriter writer{std::string(field)};
+  visit_fields(AllTypes{}, type, cdr, writer);
+  if (!field.empty() && !writer.matched()) {
+    throw std::runtime_error(type.dds_name + " has no field '" + std::string(field) + "'");
+  }
+  return writer.text();
+}
+
+std::vector<std::pair<std::string, std::string>> sample_fields(const transport::SampleType& type,
+                                                               const std::vector<uint8_t>& cdr) {
+  FieldColumns columns;
+  visit_fields(AllTypes{}, type, cdr, columns);
+  return std::move(columns.columns());
 }
 
 bool read_header(const std::vector<uint8_t>& cdr, HeaderView& header) {

@@ -37,6 +37,11 @@ std::vector<std::string> run_traces(const std::string& run_dir);
 /// created if needed. Throws PlotError.
 void plot_run(const PlotTool& tool, const std::string& run_dir, const std::string& out_dir);
 
+/// Writes the figures of a recording exported as CSV into `csv_dir` (tools' export_csv) into
+/// `out_dir`: each joint state topic's positions, each wrench's force and torque, each joint
+/// torque topic's torques. Throws PlotError.
+void plot_recording_csv(const PlotTool& tool, const std::string& csv_dir, const std::string& out_dir);
+
 /// Writes one figure per metric of an experiment's results CSV beside it, as
 /// `<csv stem>_<metric>.png`. Throws PlotError.
 void plot_results(const PlotTool& tool, const std::string& csv_path);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "teleop/transport/sample_types.h"
@@ -17,6 +18,12 @@ namespace teleop::tools {
 /// bytes do not hold a sample of the type or the field does not exist.
 std::string sample_text(const transport::SampleType& type, const std::vector<uint8_t>& cdr,
                         std::string_view field = {});
+
+/// The sample's fields flat, as the columns of a CSV row: (dotted path, value as text) in the
+/// order of the type, a sequence's items as name[i] ("q_rad[0]", "links[1].peer"). Throws
+/// std::runtime_error when the bytes do not hold a sample of the type.
+std::vector<std::pair<std::string, std::string>> sample_fields(const transport::SampleType& type,
+                                                               const std::vector<uint8_t>& cdr);
 
 /// The header every teleop sample starts with, read from its serialized bytes (no full
 /// deserialization): for tools that look at sequence numbers and stamps of any type.
