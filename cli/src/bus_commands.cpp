@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include "choice_option.h"
 #include "config_option.h"
 #include "teleop/runtime/shutdown_signal.h"
 
@@ -48,16 +49,14 @@ void BusCommands::add_record() {
   record_
       ->add_option("--storage", record_options_.format, "mcap (default: one file, each topic's schema embedded) or "
                                                         "sqlite3 (rosbag2's folder layout)")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, teleop::tools::RecordingFormat>{{"mcap", teleop::tools::RecordingFormat::kMcap},
-                                                                {"sqlite3", teleop::tools::RecordingFormat::kSqlite3}}))
+      ->transform(teleop::cli::one_of<teleop::tools::RecordingFormat>(
+          {{"mcap", teleop::tools::RecordingFormat::kMcap}, {"sqlite3", teleop::tools::RecordingFormat::kSqlite3}}))
       ->option_text("mcap|sqlite3");
   record_
       ->add_option("--compression", record_options_.compression, "an MCAP recording's chunks: zstd (default), lz4, none")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, teleop::bag::McapCompression>{
-          {"zstd", teleop::bag::McapCompression::kZstd},
-          {"lz4", teleop::bag::McapCompression::kLz4},
-          {"none", teleop::bag::McapCompression::kNone}}))
+      ->transform(teleop::cli::one_of<teleop::bag::McapCompression>({{"zstd", teleop::bag::McapCompression::kZstd},
+                                                        {"lz4", teleop::bag::McapCompression::kLz4},
+                                                        {"none", teleop::bag::McapCompression::kNone}}))
       ->option_text("zstd|lz4|none");
   record_->add_option("--topics", record_options_.topics, "only these topics")->delimiter(',');
   record_->add_option("-d,--duration", record_options_.duration_s, "stop after this many seconds")

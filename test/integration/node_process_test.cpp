@@ -191,5 +191,17 @@ TEST(DidYouMean, AMistypedSubcommandFlagOrConfigKeyIsNamedWithTheNearestKnownOne
       << key.output;
 }
 
+TEST(BadChoice, AValueNotAmongAnOptionsChoicesIsNamedWithThem) {
+  const ProcessResult storage = run_process({bin("teleop"), "record", "-o", make_temp_dir() + "/r", "--storage", "sqlite"},
+                                            std::chrono::seconds(10));
+  EXPECT_EQ(storage.exit_status, 2);
+  EXPECT_NE(storage.output.find("--storage: 'sqlite' is not one of mcap, sqlite3"), std::string::npos) << storage.output;
+  const ProcessResult compression = run_process(
+      {bin("teleop"), "record", "-o", make_temp_dir() + "/r.mcap", "--compression", "bzip2"}, std::chrono::seconds(10));
+  EXPECT_EQ(compression.exit_status, 2);
+  EXPECT_NE(compression.output.find("--compression: 'bzip2' is not one of zstd, lz4, none"), std::string::npos)
+      << compression.output;
+}
+
 }  // namespace
 }  // namespace teleop::test
