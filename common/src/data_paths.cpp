@@ -80,11 +80,13 @@ fs::path find_named_config(const std::string& kind, const std::string& name, con
 std::string resolve_config(const std::string& kind, const std::string& name_or_path, const DataRoots& roots) {
   std::error_code ec;
   const std::string file = config_file(kind, name_or_path);
-  // a path (or whatever exists under that name here) is the caller's: reading it says what is
-  // wrong with it (no such file, a folder) as it always did
-  if (file.empty() || fs::exists(name_or_path, ec)) return name_or_path;
+  // a path, or a file of that name here, is the caller's: reading it says what is wrong with it
+  if (file.empty() || (fs::exists(name_or_path, ec) && !fs::is_directory(name_or_path, ec))) return name_or_path;
+  // a folder here does not hide the config of that name: in the source tree, `follower/` is the
+  // node's code and `--config follower` its config
   const fs::path named = find_named_config(kind, name_or_path, roots);
   if (!named.empty()) return named.string();
+  if (fs::exists(name_or_path, ec)) return name_or_path;  // the reader says it is a folder
   throw ConfigError(name_or_path + ": no such file, nor a name in " + data_candidates_text(file, file, roots) +
                     did_you_mean(fs::path(name_or_path).stem().string(), known_names(kind, roots)));
 }

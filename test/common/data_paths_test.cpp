@@ -85,6 +85,20 @@ TEST_F(DataPaths, AnExistingFileOrFolderIsTakenAsGiven) {
   EXPECT_EQ(resolve_config("scenarios", dir_.path("src"), roots_), dir_.path("src"));
 }
 
+TEST_F(DataPaths, AFolderHereNamedLikeAConfigDoesNotHideIt) {
+  // as in the source tree's root, where follower/ is the node's code
+  const std::string named = put(roots_.source, "config/nodes/follower.yaml");
+  fs::create_directories(dir_.path("here/follower"));
+  fs::create_directories(dir_.path("here/twin"));
+  const fs::path before = fs::current_path();
+  fs::current_path(dir_.path("here"));
+  const std::string resolved = resolve_config("nodes", "follower", roots_);
+  const std::string folder = resolve_config("nodes", "twin", roots_);
+  fs::current_path(before);
+  EXPECT_EQ(resolved, named);
+  EXPECT_EQ(folder, "twin") << "no config of that name: the folder is left for the loader to refuse";
+}
+
 TEST_F(DataPaths, AnUnknownNameSaysWhereItLooked) {
   const std::string message =
       test::error_of<ConfigError>([&] { resolve_config("scenarios", "no_such_scenario", roots_); });
