@@ -1,4 +1,5 @@
-// The launcher as a real process: bad scenarios, failing nodes.
+// The launcher as a real process: bad scenarios, failing nodes, the demo by name from the source
+// tree's root.
 #include <gtest/gtest.h>
 
 #include "process_helpers.h"
@@ -30,6 +31,19 @@ TEST(LauncherProcess, FailsAndStopsTheOthersWhenANodeCannotStart) {
   EXPECT_NE(r.output.find("bogus_section: unknown key"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("leader exited early with status 2"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("RESULT: FAILED"), std::string::npos) << r.output;
+}
+
+// as the README's next steps run it, from the clone's root, where follower/, leader/ and twin/ are
+// folders of code: the nodes' configs are found by name all the same
+TEST(LauncherProcess, TheDemoRunsByNameFromTheSourceTreesRoot) {
+  const ProcessResult r =
+      run_process({"/bin/sh", "-c",
+                   "cd '" + source("") + "' && exec '" + bin("teleop") + "' launch demo --duration 2 --domain " +
+                       std::to_string(unique_domain()) + " --report-dir '" + make_temp_dir() + "'"},
+                  std::chrono::seconds(60));
+  EXPECT_EQ(r.exit_status, 0) << r.output;
+  EXPECT_EQ(r.output.find("is a folder"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("3 nodes running"), std::string::npos) << r.output;
 }
 
 }  // namespace
