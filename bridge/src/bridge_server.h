@@ -1,0 +1,55 @@
+#pragma once
+// The bridge's server: the channels, the clients with their subscriptions and queues, and the
+// WebSocket server. Samples come in on Fast DDS threads (dispatch: a short lock per client, never
+// the network); frames leave on the server's thread, only as fast as each client's socket takes
+// them.
+
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <shared_mutex>
+#include <string>
+
+#include "channel_table.h"
+#include "client_session.h"
+#include "teleop/bridge/bridge.h"
+#include "ws_server.h"
+
+namespace teleop::bridge {
+
+class BridgeServer {
+ public:
+  BridgeServer(const BridgeOptions& options, FILE* log);
+  ~BridgeServer();
+
+  /// Listens and starts serving; returns the port.
+  uint16_t start();
+  /// Closes every connection (each client's tally is logged) and stops.
+  void stop();
+
+  /// A new channel, advertised to every client; returns its id.
+  uint32_t add_channel(const std::string& topic, const std::string& schema_name, const std::string& schema);
+  /// On a Fast DDS thread: a sample of `channel_id` for every client subscribed to it.
+  void dispatch(uint32_t channel_id, const transport::RawSample& sample);
+
+ private:
+  std::shared_ptr<ClientSession> client(ClientId id) const;
+  void opened(ClientId id, const std::string& remote);
+  void received(ClientId id, const std::string& payload, bool binary);
+  void closed(ClientId id);
+  void subscribe(ClientId id, ClientSession& session, const ClientRequest& request);
+  void unsubscribe(ClientId id, ClientSession& session, const ClientRequest& request);
+  void warn(ClientId id, const std::string& message);
+  void pump(ClientId id);
+  void pump_all();
+
+  const BridgeOptions options_;
+  FILE* log_;
+  const std::string session_id_;
+  ChannelTable channels_;
+  mutable std::shared_mutex clients_mutex_;
+  std::map<ClientId, std::shared_ptr<ClientSession>> clients_;
+  WsServer server_;
+};
+
+}  // namespace teleop::bridge
