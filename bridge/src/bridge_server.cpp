@@ -32,8 +32,8 @@ uint16_t BridgeServer::start() {
 
 void BridgeServer::stop() { server_.stop(); }
 
-uint32_t BridgeServer::add_channel(const std::string& topic, const std::string& schema_name, const std::string& schema) {
-  const Channel channel = channels_.add(topic, schema_name, schema);
+uint32_t BridgeServer::add_channel(Channel channel_to_add) {
+  const Channel channel = channels_.add(std::move(channel_to_add));
   server_.post([this, channel] {
     const std::string advertise = advertise_json({channel});
     std::shared_lock lock(clients_mutex_);
@@ -42,12 +42,12 @@ uint32_t BridgeServer::add_channel(const std::string& topic, const std::string& 
   return channel.id;
 }
 
-void BridgeServer::dispatch(uint32_t channel_id, const transport::RawSample& sample) {
+void BridgeServer::publish(uint32_t channel_id, const uint8_t* payload, size_t size, int64_t receive_ns) {
   const int64_t now_ns = monotonic_now_ns();
   std::shared_lock lock(clients_mutex_);
   for (const auto& [id, session] : clients_) {
     // the first frame in an empty queue wakes the sender; later ones ride along
-    if (session->offer(channel_id, sample, now_ns)) server_.post([this, id = id] { pump(id); });
+    if (session->offer(channel_id, payload, size, receive_ns, now_ns)) server_.post([this, id = id] { pump(id); });
   }
 }
 

@@ -27,10 +27,11 @@ class BridgeServer {
   /// Closes every connection (each client's tally is logged) and stops.
   void stop();
 
-  /// A new channel, advertised to every client; returns its id.
-  uint32_t add_channel(const std::string& topic, const std::string& schema_name, const std::string& schema);
-  /// On a Fast DDS thread: a sample of `channel_id` for every client subscribed to it.
-  void dispatch(uint32_t channel_id, const transport::RawSample& sample);
+  /// A new channel (its id is chosen here), advertised to every client; returns its id.
+  uint32_t add_channel(Channel channel);
+  /// From any thread (a Fast DDS thread for the bus's samples): a message of `channel_id`,
+  /// received at `receive_ns` (CLOCK_REALTIME), for every client subscribed to it.
+  void publish(uint32_t channel_id, const uint8_t* payload, size_t size, int64_t receive_ns);
 
  private:
   std::shared_ptr<ClientSession> client(ClientId id) const;

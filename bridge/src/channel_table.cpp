@@ -2,9 +2,10 @@
 
 namespace teleop::bridge {
 
-Channel ChannelTable::add(const std::string& topic, const std::string& schema_name, const std::string& schema) {
+Channel ChannelTable::add(Channel channel) {
   std::lock_guard lock(mutex_);
-  channels_.push_back({static_cast<uint32_t>(channels_.size() + 1), topic, schema_name, schema});
+  channel.id = static_cast<uint32_t>(channels_.size() + 1);
+  channels_.push_back(std::move(channel));
   return channels_.back();
 }
 

@@ -13,8 +13,8 @@ namespace teleop::bridge {
 
 class ChannelTable {
  public:
-  /// Adds a channel and returns it with its id.
-  Channel add(const std::string& topic, const std::string& schema_name, const std::string& schema);
+  /// Adds `channel` under the next id and returns it with that id.
+  Channel add(Channel channel);
   std::vector<Channel> all() const;
   bool contains(uint32_t id) const;
 

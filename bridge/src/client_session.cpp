@@ -28,7 +28,8 @@ std::optional<std::string> ClientSession::unsubscribe(uint32_t subscription_id) 
   return std::nullopt;
 }
 
-bool ClientSession::offer(uint32_t channel_id, const transport::RawSample& sample, int64_t now_ns) {
+bool ClientSession::offer(uint32_t channel_id, const uint8_t* payload, size_t size, int64_t receive_ns,
+                          int64_t now_ns) {
   uint32_t subscription_id = 0;
   {
     std::lock_guard lock(mutex_);
@@ -40,8 +41,7 @@ bool ClientSession::offer(uint32_t channel_id, const transport::RawSample& sampl
     }
     subscription_id = it->second.id;
   }
-  return queue_.push(message_data_frame(subscription_id, static_cast<uint64_t>(sample.reception_ns),
-                                        sample.cdr.data(), sample.cdr.size()));
+  return queue_.push(message_data_frame(subscription_id, static_cast<uint64_t>(receive_ns), payload, size));
 }
 
 ClientStats ClientSession::stats() const {

@@ -12,7 +12,6 @@
 
 #include "rate_limiter.h"
 #include "send_queue.h"
-#include "teleop/transport/raw_endpoint.h"
 
 namespace teleop::bridge {
 
@@ -34,9 +33,10 @@ class ClientSession {
   /// An error message when the id is not subscribed.
   std::optional<std::string> unsubscribe(uint32_t subscription_id);
 
-  /// A sample of `channel_id` arrived at `now_ns` (monotonic): queued as a message frame when
-  /// subscribed and the rate limit lets it pass. Returns whether the sender should be woken.
-  bool offer(uint32_t channel_id, const transport::RawSample& sample, int64_t now_ns);
+  /// A message of `channel_id` (`size` bytes, received at `receive_ns`, CLOCK_REALTIME) offered at
+  /// `now_ns` (monotonic): queued as a message frame when subscribed and the rate limit lets it
+  /// pass. Returns whether the sender should be woken.
+  bool offer(uint32_t channel_id, const uint8_t* payload, size_t size, int64_t receive_ns, int64_t now_ns);
 
   SendQueue& queue() { return queue_; }
   void count_sent() { sent_.fetch_add(1, std::memory_order_relaxed); }

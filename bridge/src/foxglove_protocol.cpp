@@ -57,10 +57,10 @@ std::string advertise_json(const std::vector<Channel>& channels) {
   for (const Channel& c : channels) {
     list.push_back({{"id", c.id},
                     {"topic", c.topic},
-                    {"encoding", "cdr"},
+                    {"encoding", c.encoding},
                     {"schemaName", c.schema_name},
                     {"schema", c.schema},
-                    {"schemaEncoding", "ros2msg"}});
+                    {"schemaEncoding", c.schema_encoding}});
   }
   return json{{"op", "advertise"}, {"channels", list}}.dump();
 }

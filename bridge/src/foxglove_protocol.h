@@ -14,12 +14,15 @@ namespace teleop::bridge {
 
 inline constexpr const char* kSubprotocol = "foxglove.websocket.v1";
 
-/// A channel as advertised: a teleop topic with its type's ROS 2 schema, messages as CDR.
+/// A channel as advertised: a teleop topic with its type's ROS 2 schema, messages as CDR; or a
+/// channel the bridge computes (JSON messages of a Foxglove schema, e.g. foxglove.FrameTransforms).
 struct Channel {
   uint32_t id = 0;
   std::string topic;
   std::string schema_name;  ///< "teleop_msgs/msg/JointState"
   std::string schema;       ///< the ros2msg text with its dependencies
+  std::string encoding = "cdr";
+  std::string schema_encoding = "ros2msg";
 };
 
 enum class StatusLevel { kInfo = 0, kWarning = 1, kError = 2 };

@@ -31,6 +31,14 @@ TEST(BridgeFoxgloveProtocol, AdvertiseCarriesTheRos2Schema) {
   EXPECT_EQ(c["schema"], "float64[] q_rad\n");
 }
 
+TEST(BridgeFoxgloveProtocol, AComputedChannelIsAdvertisedAsJson) {
+  Channel scene{0, "scene/transforms", "foxglove.FrameTransforms", "{}", "json", "jsonschema"};
+  const json c = json::parse(advertise_json({scene}))["channels"][0];
+  EXPECT_EQ(c["encoding"], "json");
+  EXPECT_EQ(c["schemaEncoding"], "jsonschema");
+  EXPECT_EQ(c["schemaName"], "foxglove.FrameTransforms");
+}
+
 TEST(BridgeFoxgloveProtocol, MessageDataIsOpcodeSubscriptionTimeThenPayloadLittleEndian) {
   const uint8_t payload[] = {0x00, 0x01, 0x00, 0x00, 0xab};
   const std::string frame = message_data_frame(0x01020304, 0x1122334455667788ull, payload, sizeof payload);

@@ -2,10 +2,12 @@
 // (@foxglove/ws-protocol, the one Foxglove itself uses) over the `ws` package: it lists the
 // channels, checks each one's schema parses as ROS 2 .msg (@foxglove/rosmsg), subscribes to one
 // topic and decodes every live message with the schema the bridge embedded
-// (@foxglove/rosmsg2-serialization). With --stall, a second client first subscribes to every
-// channel and then stops reading its socket: the bridge must keep serving the first one.
+// (@foxglove/rosmsg2-serialization). With --scene, the computed scene/transforms channel
+// (foxglove.FrameTransforms, JSON) must carry the follower's frames too. With --stall, a second
+// client first subscribes to every channel and then stops reading its socket: the bridge must keep
+// serving the first one.
 //   TELEOP_NPM_DIR=build/npm node bridge_client.mjs ws://127.0.0.1:PORT --topic T --source NODE
-//     [--seconds S] [--max-rate HZ] [--stall] [--wait S]
+//     [--seconds S] [--max-rate HZ] [--stall] [--scene] [--wait S]
 // Prints one JSON line; exits 1 with the reason when anything does not hold.
 import { createRequire } from "node:module";
 import { join } from "node:path";
@@ -28,6 +30,7 @@ const seconds = Number(option("--seconds", "3"));
 const maxRate = Number(option("--max-rate", "0"));
 const waitSeconds = Number(option("--wait", "20"));
 const stall = rest.includes("--stall");
+const scene = rest.includes("--scene");
 
 function fail(reason) {
   console.error(`bridge_client: ${url}: ${reason}`);
@@ -36,8 +39,16 @@ function fail(reason) {
 const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
 setTimeout(() => fail("timed out"), (waitSeconds + seconds + 20) * 1000).unref();
 
-// every channel as the protocol and teleop's recordings agree: CDR with a ros2msg schema that parses
+// every channel as the protocol and teleop's recordings agree: CDR with a ros2msg schema that parses;
+// or one the bridge computes: JSON of a Foxglove schema
 function checkChannel(channel) {
+  if (channel.encoding === "json") {
+    if (channel.schemaEncoding !== "jsonschema" || !channel.schemaName.startsWith("foxglove.")) {
+      fail(`${channel.topic}: json with schema ${channel.schemaName} (${channel.schemaEncoding})`);
+    }
+    JSON.parse(channel.schema);
+    return undefined;
+  }
   if (channel.encoding !== "cdr") fail(`${channel.topic}: encoding ${channel.encoding}`);
   if (channel.schemaEncoding !== "ros2msg") fail(`${channel.topic}: schema encoding ${channel.schemaEncoding}`);
   if (!channel.schemaName.startsWith("teleop_msgs/msg/")) fail(`${channel.topic}: schema name ${channel.schemaName}`);
@@ -91,6 +102,26 @@ if (!serverInfo) fail("no serverInfo");
 if (serverInfo.capabilities.includes("clientPublish")) fail("clientPublish advertised: the bridge is read-only");
 if (!wanted()) fail(`no channel ${topic} within ${waitSeconds} s (channels: ${[...channels.values()].map((c) => c.channel.topic)})`);
 
+// the scene's frames: the follower's bodies, each a child of the world
+async function checkScene() {
+  const transforms = [...channels.values()].find((c) => c.channel.topic === "scene/transforms");
+  if (!transforms || transforms.channel.schemaName !== "foxglove.FrameTransforms") fail("no scene/transforms channel");
+  const id = client.subscribe(transforms.channel.id);
+  const message = await new Promise((resolve) => {
+    const take = (event) => {
+      if (event.subscriptionId !== id) return;
+      client.off("message", take);
+      resolve(JSON.parse(new TextDecoder().decode(event.data)));
+    };
+    client.on("message", take);
+  });
+  client.unsubscribe(id);
+  const frames = message.transforms.filter((t) => t.parent_frame_id === "world" && t.child_frame_id.startsWith("follower/"));
+  if (frames.length === 0) fail(`scene/transforms without the follower's frames: ${JSON.stringify(message).slice(0, 300)}`);
+  return frames.length;
+}
+const sceneFrames = scene ? await checkScene() : 0;
+
 const stalled = stall ? await startStalledClient() : undefined;
 if (stalled) await sleep(1000);  // the stalled client's socket fills before the measurement starts
 
@@ -116,6 +147,7 @@ const allowed = maxRate > 0 ? Math.floor(maxRate * elapsed) + 2 : Infinity;
 if (counted === 0) fail(`no message on ${topic} in ${elapsed.toFixed(2)} s`);
 if (counted > allowed) fail(`${counted} messages in ${elapsed.toFixed(2)} s: more than --max-rate ${maxRate} allows (${allowed})`);
 if (stalled) stalled.terminate();
-console.log(JSON.stringify({ channels: channels.size, topic, received: counted, seconds: elapsed, allowed: String(allowed), stalled: stall }));
+console.log(JSON.stringify({ channels: channels.size, topic, received: counted, seconds: elapsed, allowed: String(allowed),
+  stalled: stall, scene_frames: sceneFrames }));
 client.close();
 process.exit(0);

@@ -9,8 +9,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <string>
+#include <vector>
 
+#include "teleop/common/json_channel.h"
 #include "teleop/tools/topic_tools.h"
 
 namespace teleop::bridge {
@@ -29,9 +32,23 @@ struct BridgeOptions {
   size_t max_buffered_bytes = 256 * 1024;
 };
 
+/// Channels the bridge computes instead of relaying: JSON messages of schemas Foxglove knows by
+/// name (the arms in the 3D panel: foxglove.FrameTransforms, foxglove.SceneUpdate). What computes
+/// them is wired in by the caller (cli: view's scene), so the bridge knows no model.
+struct ComputedSource {
+  std::vector<JsonChannel> channels;
+  /// How often poll() is called [Hz].
+  double rate_hz = 30.0;
+  /// Called on the bridge's main thread (never a Fast DDS thread), `rate_hz` times a second:
+  /// appends the messages due now.
+  std::function<void(std::vector<JsonMessage>& out)> poll;
+};
+
 /// Serves until interrupted (SIGINT, SIGTERM). Logs the address, each client's arrival and, when
 /// it leaves, what it was sent, dropped and held back by the rate limit. Returns the exit code.
 /// Throws std::runtime_error when the address cannot be bound, ConfigError on a bad node config.
-int run_bridge(const tools::BusOptions& bus, const BridgeOptions& options, FILE* log);
+/// `sources`: channels computed beside the bus's.
+int run_bridge(const tools::BusOptions& bus, const BridgeOptions& options, FILE* log,
+               std::vector<ComputedSource> sources = {});
 
 }  // namespace teleop::bridge
