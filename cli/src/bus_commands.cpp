@@ -4,6 +4,7 @@
 
 #include "config_option.h"
 #include "teleop/runtime/shutdown_signal.h"
+#include "teleop/view/foxglove_scene.h"
 
 BusCommands::BusCommands(CLI::App& app) : app_(&app) {
   CLI::App* topic = app.add_subcommand("topic", "the topics on the bus: list, info, echo, hz");
@@ -105,6 +106,12 @@ void BusCommands::add_bridge() {
       ->add_option("--queue", bridge_options_.queue_capacity,
                    "frames waiting per client at most; beyond, the oldest is dropped and counted (default 1024)")
       ->check(CLI::Range(1, 1 << 24));
+  bridge_
+      ->add_option("--scene", bridge_scene_,
+                   "also the scene of this follower, twin or hand config for the 3D panel (scene/transforms, "
+                   "scene/geometry, scene/forces); a file or a name in config/nodes")
+      ->transform(teleop::cli::named_config("nodes"))
+      ->check(CLI::ExistingFile);
   add_bus_options(bridge_);
 }
 
@@ -130,7 +137,7 @@ std::optional<int> BusCommands::run() {
   teleop::runtime::install_shutdown_handlers();
   if (record_->parsed()) return run_record();
   if (replay_->parsed()) return run_replay();
-  if (bridge_->parsed()) return teleop::bridge::run_bridge(bus_, bridge_options_, stderr);
+  if (bridge_->parsed()) return run_bridge();
   if (list_->parsed()) return topic_list(bus_, verbose_, stdout);
   if (info_->parsed()) return topic_info(bus_, topic_, stdout);
   if (echo_->parsed()) return topic_echo(bus_, echo_options_, stdout);
@@ -154,4 +161,15 @@ int BusCommands::run_replay() {
   const teleop::tools::ReplayResult r = teleop::tools::replay(bus_, replay_options_, stderr);
   std::printf("%s", teleop::tools::format_replay(r, replay_options_).c_str());
   return r.published > 0 ? 0 : 1;
+}
+
+int BusCommands::run_bridge() {
+  std::vector<teleop::bridge::ComputedSource> sources;
+  if (!bridge_scene_.empty()) {
+    // the arms for the 3D panel: view computes, the bridge serves
+    auto scene = std::make_shared<teleop::view::FoxgloveScene>(bridge_scene_, bus_.config_path, bus_.domain_id);
+    sources.push_back({teleop::view::FoxgloveScene::channels(), 30.0,
+                       [scene](std::vector<teleop::JsonMessage>& out) { scene->poll(out); }});
+  }
+  return teleop::bridge::run_bridge(bus_, bridge_options_, stderr, std::move(sources));
 }

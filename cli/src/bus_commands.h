@@ -26,6 +26,7 @@ class BusCommands {
   void add_bridge();
   int run_record();
   int run_replay();
+  int run_bridge();
 
   CLI::App* app_;
   teleop::tools::BusOptions bus_;
@@ -46,4 +47,5 @@ class BusCommands {
   teleop::tools::RecordOptions record_options_;
   teleop::tools::ReplayOptions replay_options_;
   teleop::bridge::BridgeOptions bridge_options_;
+  std::string bridge_scene_;
 };

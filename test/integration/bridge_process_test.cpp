@@ -1,8 +1,9 @@
 // `teleop bridge` against real nodes, read by the Foxglove WebSocket client library
 // (test/bridge/ws_interop/bridge_client.mjs, npm @foxglove/ws-protocol, installed by
 // scripts/setup.sh into TELEOP_NPM_DIR): the follower's joint states decode live with the schema
-// the bridge advertised, no more arrive than --max-rate allows, and a client that stops reading
-// has its frames dropped and counted while another client is served at full rate.
+// the bridge advertised, no more arrive than --max-rate allows, the follower's scene is computed
+// for the 3D panel (--scene), and a client that stops reading has its frames dropped and counted
+// while another client is served at full rate.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -51,15 +52,17 @@ unsigned long long json_number(const std::string& json, const std::string& key) 
   return std::stoull(m[1]);
 }
 
-TEST_F(BridgeProcessTest, JointStatesDecodeLiveWithinTheRateLimit) {
-  RunningProcess bridge(tool({"bridge", "--port", "0", "--max-rate", "50"}, domain));
+TEST_F(BridgeProcessTest, JointStatesDecodeLiveWithinTheRateLimitBesideTheScene) {
+  RunningProcess bridge(tool({"bridge", "--port", "0", "--max-rate", "50", "--scene", "follower"}, domain));
   const std::string url = start(bridge);
   ASSERT_FALSE(url.empty()) << bridge.output();
 
-  const ProcessResult r = client(url, {"--max-rate", "50"});
+  const ProcessResult r = client(url, {"--max-rate", "50", "--scene"});
   ASSERT_EQ(r.exit_status, 0) << r.output << bridge.output();
   EXPECT_GT(json_number(r.output, "received"), 0u) << r.output;
-  EXPECT_GE(json_number(r.output, "channels"), 3u) << r.output;  // the leader's and the follower's topics at least
+  // the leader's and the follower's topics at least, and the scene's three
+  EXPECT_GE(json_number(r.output, "channels"), 6u) << r.output;
+  EXPECT_GE(json_number(r.output, "scene_frames"), 7u) << r.output;  // the arm's links
 
   ASSERT_EQ(bridge.stop(SIGINT, 10s), 0) << bridge.output();
   // the bridge's own tally agrees: the 1 kHz stream was mostly held back, nothing dropped
