@@ -111,6 +111,7 @@ void BridgeServer::closed(ClientId id) {
     session = it->second;
     clients_.erase(it);
   }
+  slow_.erase(id);
   const ClientStats s = session->stats();
   std::fprintf(log_, "client %llu (%s) left: sent %llu, dropped %llu (queue full), limited %llu (rate limit)\n",
                static_cast<unsigned long long>(id), session->remote().c_str(),
@@ -120,24 +121,38 @@ void BridgeServer::closed(ClientId id) {
 }
 
 void BridgeServer::pump(ClientId id) {
-  const std::shared_ptr<ClientSession> session = client(id);
-  if (!session) return;
+  if (const std::shared_ptr<ClientSession> session = client(id)) send_queued(id, *session);
+}
+
+void BridgeServer::send_queued(ClientId id, ClientSession& session) {
   // hand frames over only while the client's socket takes them: the rest wait in the bounded queue
   while (server_.buffered_bytes(id) < options_.max_buffered_bytes) {
-    std::optional<std::string> frame = session->queue().pop();
+    std::optional<std::string> frame = session.queue().pop();
     if (!frame) return;
     server_.send(id, *frame, true);
-    session->count_sent();
+    session.count_sent();
   }
 }
 
 void BridgeServer::pump_all() {
-  std::vector<ClientId> ids;
+  std::vector<std::pair<ClientId, std::shared_ptr<ClientSession>>> sessions;
   {
     std::shared_lock lock(clients_mutex_);
-    for (const auto& entry : clients_) ids.push_back(entry.first);
+    sessions.assign(clients_.begin(), clients_.end());
   }
-  for (const ClientId id : ids) pump(id);
+  for (const auto& [id, session] : sessions) {
+    send_queued(id, *session);
+    warn_if_slow(id, *session);
+  }
+}
+
+// once per client, from the server's thread (the bus's threads never write the log)
+void BridgeServer::warn_if_slow(ClientId id, const ClientSession& session) {
+  if (slow_.count(id) > 0 || session.stats().dropped == 0) return;
+  slow_.insert(id);
+  std::fprintf(log_, "client %llu (%s) is not keeping up: its oldest frames are dropped (queue of %zu)\n",
+               static_cast<unsigned long long>(id), session.remote().c_str(), options_.queue_capacity);
+  std::fflush(log_);
 }
 
 }  // namespace teleop::bridge

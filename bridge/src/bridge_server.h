@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <set>
 #include <shared_mutex>
 #include <string>
 
@@ -42,7 +43,9 @@ class BridgeServer {
   void unsubscribe(ClientId id, ClientSession& session, const ClientRequest& request);
   void warn(ClientId id, const std::string& message);
   void pump(ClientId id);
+  void send_queued(ClientId id, ClientSession& session);
   void pump_all();
+  void warn_if_slow(ClientId id, const ClientSession& session);
 
   const BridgeOptions options_;
   FILE* log_;
@@ -50,6 +53,8 @@ class BridgeServer {
   ChannelTable channels_;
   mutable std::shared_mutex clients_mutex_;
   std::map<ClientId, std::shared_ptr<ClientSession>> clients_;
+  // the clients told to be too slow (in the log), on the server's thread
+  std::set<ClientId> slow_;
   WsServer server_;
 };
 

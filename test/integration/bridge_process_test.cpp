@@ -37,12 +37,13 @@ class BridgeProcessTest : public ::testing::Test {
     return std::regex_search(out, m, std::regex(R"(listening on (ws://127\.0\.0\.1:[0-9]+))")) ? m[1].str() : "";
   }
 
-  static ProcessResult client(const std::string& url, std::vector<std::string> args) {
-    // through env: the spawn takes a path, env finds node on PATH
+  // the client script on the follower's joint states; through env: the spawn takes a path, env
+  // finds node on PATH (and execs it: a signal to the process reaches node)
+  static std::vector<std::string> client_command(const std::string& url, std::vector<std::string> args) {
     std::vector<std::string> argv{"/usr/bin/env", "TELEOP_NPM_DIR=" TELEOP_NPM_DIR, "node", TELEOP_BRIDGE_CLIENT, url,
                                   "--topic", "teleop/follower/joint_state", "--source", "follower", "--seconds", "3"};
     argv.insert(argv.end(), args.begin(), args.end());
-    return run_process(argv, 90s);
+    return argv;
   }
 };
 
@@ -57,7 +58,7 @@ TEST_F(BridgeProcessTest, JointStatesDecodeLiveWithinTheRateLimitBesideTheScene)
   const std::string url = start(bridge);
   ASSERT_FALSE(url.empty()) << bridge.output();
 
-  const ProcessResult r = client(url, {"--max-rate", "50", "--scene"});
+  const ProcessResult r = run_process(client_command(url, {"--max-rate", "50", "--scene"}), 90s);
   ASSERT_EQ(r.exit_status, 0) << r.output << bridge.output();
   EXPECT_GT(json_number(r.output, "received"), 0u) << r.output;
   // the leader's and the follower's topics at least, and the scene's three
@@ -78,9 +79,15 @@ TEST_F(BridgeProcessTest, AClientThatStopsReadingLosesFramesNotTheOthers) {
   const std::string url = start(bridge);
   ASSERT_FALSE(url.empty()) << bridge.output();
 
-  const ProcessResult r = client(url, {"--stall"});
-  ASSERT_EQ(r.exit_status, 0) << r.output << bridge.output();
-  EXPECT_GT(json_number(r.output, "received"), 0u) << r.output;
+  RunningProcess client(client_command(url, {"--stall"}));
+  ASSERT_TRUE(client.wait_for_output("stalled client subscribed", 60s)) << client.output() << bridge.output();
+  // flow, not time: however long the stalled client's socket buffers take to fill, its queue
+  // overflows at last and the bridge says so
+  ASSERT_TRUE(bridge.wait_for_output("is not keeping up", 150s)) << bridge.output();
+  client.process().signal(SIGUSR1);  // now the reading client is measured beside the stalled one
+  ASSERT_TRUE(client.wait_for_output("\"received\"", 60s)) << client.output() << bridge.output();
+  EXPECT_EQ(client.stop(0, 10s), 0) << client.output();  // signal 0: no signal, it exits by itself
+  EXPECT_GT(json_number(client.output(), "received"), 0u) << client.output();
 
   ASSERT_EQ(bridge.stop(SIGINT, 10s), 0) << bridge.output();
   // two clients left: the stalled one dropped frames (counted), the reading one got its share

@@ -4,8 +4,9 @@
 // topic and decodes every live message with the schema the bridge embedded
 // (@foxglove/rosmsg2-serialization). With --scene, the computed scene/transforms channel
 // (foxglove.FrameTransforms, JSON) must carry the follower's frames too. With --stall, a second
-// client first subscribes to every channel and then stops reading its socket: the bridge must keep
-// serving the first one.
+// client first subscribes to every channel and then stops reading its socket; the script says
+// "stalled client subscribed" and waits for SIGUSR1 (the test sends it once the bridge reports the
+// stalled client's drops), then measures the first one: the bridge must keep serving it.
 //   TELEOP_NPM_DIR=build/npm node bridge_client.mjs ws://127.0.0.1:PORT --topic T --source NODE
 //     [--seconds S] [--max-rate HZ] [--stall] [--scene] [--wait S]
 // Prints one JSON line; exits 1 with the reason when anything does not hold.
@@ -37,7 +38,8 @@ function fail(reason) {
   process.exit(1);
 }
 const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
-setTimeout(() => fail("timed out"), (waitSeconds + seconds + 20) * 1000).unref();
+// (a stalled client may take its while to fill the socket's buffers: the test waits for the bridge)
+setTimeout(() => fail("timed out"), (waitSeconds + seconds + 20 + (stall ? 180 : 0)) * 1000).unref();
 
 // every channel as the protocol and teleop's recordings agree: CDR with a ros2msg schema that parses;
 // or one the bridge computes: JSON of a Foxglove schema
@@ -123,7 +125,11 @@ async function checkScene() {
 const sceneFrames = scene ? await checkScene() : 0;
 
 const stalled = stall ? await startStalledClient() : undefined;
-if (stalled) await sleep(1000);  // the stalled client's socket fills before the measurement starts
+if (stalled) {
+  const go = new Promise((resolve) => process.once("SIGUSR1", resolve));
+  console.log("stalled client subscribed");
+  await go;
+}
 
 const { channel, reader } = wanted();
 let received = 0;
