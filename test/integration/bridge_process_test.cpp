@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <csignal>
+#include <filesystem>
 #include <regex>
 
 #include "process_helpers.h"
@@ -24,6 +25,12 @@ int bridge_domain() { return 200 + static_cast<int>(getpid() % 31); }
 
 class BridgeProcessTest : public ::testing::Test {
  protected:
+  void SetUp() override {
+    ASSERT_TRUE(std::filesystem::exists(TELEOP_NPM_DIR "/node_modules/@foxglove/ws-protocol"))
+        << "no @foxglove/ws-protocol in " TELEOP_NPM_DIR "/node_modules: run scripts/setup.sh (it installs the "
+           "test's npm packages)";
+  }
+
   std::string dir = make_temp_dir();
   int domain = bridge_domain();
   RunningProcess follower{node(dir, "follower", domain, 60)};
