@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages teleop needs. Idempotent: does nothing when all are present.
 #   scripts/setup.sh          everything: build, demo, tests, benchmarks (scripts/run_tests.sh), and
-#                             the npm packages of the MCAP interop tests (into build/npm)
+#                             the npm packages of the MCAP and bridge interop tests (into build/npm)
 #   scripts/setup.sh --demo   what building and running the demo needs (scripts/run_demo.sh)
 set -euo pipefail
 
@@ -19,6 +19,8 @@ demo_packages=(
   python3-matplotlib
   # the 3D view and videos of runs (teleop view, teleop render; docs/view.md): its window, its PNGs
   libglfw3-dev libpng-dev
+  # teleop bridge, the bus in Foxglove/Lichtblick (docs/tools.md): WebSocket server on standalone asio, JSON
+  libwebsocketpp-dev libasio-dev nlohmann-json3-dev
 )
 # the test suite and the benchmarks on top
 test_packages=(
@@ -45,7 +47,8 @@ case "${1:-}" in
   *) echo "usage: $0 [--demo]" >&2; exit 2 ;;
 esac
 
-# the reference MCAP readers of the interop tests (test/bag/mcap_interop): npm packages for the
+# the reference MCAP readers and the Foxglove WebSocket client of the interop tests
+# (test/bag/mcap_interop, test/bridge/ws_interop; one package.json for both): npm packages for the
 # tests only, installed into build/npm (never needed to build or run teleop); Debian's nodejs and
 # npm when the machine has no node
 install_test_npm() {

@@ -5,6 +5,7 @@
 #include "choice_option.h"
 #include "config_option.h"
 #include "teleop/runtime/shutdown_signal.h"
+#include "teleop/view/foxglove_scene.h"
 
 BusCommands::BusCommands(CLI::App& app) : app_(&app) {
   CLI::App* topic = app.add_subcommand("topic", "the topics on the bus: list, info, echo, hz");
@@ -38,6 +39,7 @@ BusCommands::BusCommands(CLI::App& app) : app_(&app) {
   add_bus_options(monitor_);
   add_record();
   add_replay();
+  add_bridge();
 }
 
 void BusCommands::add_record() {
@@ -89,6 +91,29 @@ void BusCommands::add_replay() {
   add_bus_options(replay_);
 }
 
+void BusCommands::add_bridge() {
+  bridge_ = app_->add_subcommand(
+      "bridge", "serve the bus to Foxglove or Lichtblick (Foxglove WebSocket protocol, read-only): every teleop topic "
+                "as a channel with its ROS 2 schema");
+  bridge_->add_option("--address", bridge_options_.address, "the address to listen on (default 127.0.0.1: this host only)");
+  bridge_->add_option("--port", bridge_options_.port, "the port (default 8765; 0: any free one, printed)");
+  bridge_
+      ->add_option("--max-rate", bridge_options_.max_rate_hz,
+                   "messages per second per subscription at most (default 50; 0: every sample)")
+      ->check(CLI::Range(0.0, 1e6));
+  bridge_
+      ->add_option("--queue", bridge_options_.queue_capacity,
+                   "frames waiting per client at most; beyond, the oldest is dropped and counted (default 1024)")
+      ->check(CLI::Range(1, 1 << 24));
+  bridge_
+      ->add_option("--scene", bridge_scene_,
+                   "also the scene of this follower, twin or hand config for the 3D panel (scene/transforms, "
+                   "scene/geometry, scene/forces); a file or a name in config/nodes")
+      ->transform(teleop::cli::named_config("nodes"))
+      ->check(CLI::ExistingFile);
+  add_bus_options(bridge_);
+}
+
 void BusCommands::add_bus_options(CLI::App* command) {
   command
       ->add_option("-c,--config", bus_.config_path,
@@ -106,11 +131,12 @@ void BusCommands::add_bus_options(CLI::App* command) {
 std::optional<int> BusCommands::run() {
   using namespace teleop::tools;
   const bool any = list_->parsed() || info_->parsed() || echo_->parsed() || hz_->parsed() || monitor_->parsed() ||
-                   record_->parsed() || replay_->parsed();
+                   record_->parsed() || replay_->parsed() || bridge_->parsed();
   if (!any) return std::nullopt;
   teleop::runtime::install_shutdown_handlers();
   if (record_->parsed()) return run_record();
   if (replay_->parsed()) return run_replay();
+  if (bridge_->parsed()) return run_bridge();
   if (list_->parsed()) return topic_list(bus_, verbose_, stdout);
   if (info_->parsed()) return topic_info(bus_, topic_, stdout);
   if (echo_->parsed()) return topic_echo(bus_, echo_options_, stdout);
@@ -134,4 +160,15 @@ int BusCommands::run_replay() {
   const teleop::tools::ReplayResult r = teleop::tools::replay(bus_, replay_options_, stderr);
   std::printf("%s", teleop::tools::format_replay(r, replay_options_).c_str());
   return r.published > 0 ? 0 : 1;
+}
+
+int BusCommands::run_bridge() {
+  std::vector<teleop::bridge::ComputedSource> sources;
+  if (!bridge_scene_.empty()) {
+    // the arms for the 3D panel: view computes, the bridge serves
+    auto scene = std::make_shared<teleop::view::FoxgloveScene>(bridge_scene_, bus_.config_path, bus_.domain_id);
+    sources.push_back({teleop::view::FoxgloveScene::channels(), 30.0,
+                       [scene](std::vector<teleop::JsonMessage>& out) { scene->poll(out); }});
+  }
+  return teleop::bridge::run_bridge(bus_, bridge_options_, stderr, std::move(sources));
 }

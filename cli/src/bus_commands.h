@@ -1,11 +1,12 @@
 #pragma once
 // The subcommands that look at the bus: `teleop topic list|info|echo|hz` and `teleop monitor`
-// (and `record`, `replay`). Each joins the domain the way a node config says.
+// (and `record`, `replay`, `bridge`). Each joins the domain the way a node config says.
 
 #include <CLI/CLI.hpp>
 
 #include <optional>
 
+#include "teleop/bridge/bridge.h"
 #include "teleop/tools/monitor.h"
 #include "teleop/tools/recorder.h"
 #include "teleop/tools/replayer.h"
@@ -22,8 +23,10 @@ class BusCommands {
   void add_bus_options(CLI::App* command);
   void add_record();
   void add_replay();
+  void add_bridge();
   int run_record();
   int run_replay();
+  int run_bridge();
 
   CLI::App* app_;
   teleop::tools::BusOptions bus_;
@@ -34,6 +37,7 @@ class BusCommands {
   CLI::App* monitor_ = nullptr;
   CLI::App* record_ = nullptr;
   CLI::App* replay_ = nullptr;
+  CLI::App* bridge_ = nullptr;
   bool verbose_ = false;
   std::string topic_;
   teleop::tools::EchoOptions echo_options_;
@@ -42,4 +46,6 @@ class BusCommands {
   std::optional<bool> lines_;
   teleop::tools::RecordOptions record_options_;
   teleop::tools::ReplayOptions replay_options_;
+  teleop::bridge::BridgeOptions bridge_options_;
+  std::string bridge_scene_;
 };

@@ -9,16 +9,15 @@
 #include <condition_variable>
 #include <map>
 #include <mutex>
-#include <set>
 #include <thread>
 
-#include "bus.h"
 #include "teleop/bag/bag_writer.h"
 #include "teleop/bag/mcap_writer.h"
 #include "teleop/common/clock.h"
 #include "teleop/common/config.h"
 #include "teleop/common/did_you_mean.h"
 #include "teleop/runtime/shutdown_signal.h"
+#include "teleop/tools/bus_tap.h"
 #include "teleop/tools/sample_text.h"
 #include "teleop/transport/topics.h"
 
@@ -109,11 +108,6 @@ std::string qos_yaml(transport::QosPreset preset) {
                      transient ? 1 : 2);
 }
 
-bool wanted(const RecordOptions& options, const std::string& topic) {
-  return options.topics.empty() ||
-         std::find(options.topics.begin(), options.topics.end(), topic) != options.topics.end();
-}
-
 // a member of a topic family: the family's prefix and a name after it
 bool in_family(const std::string& topic) {
   for (const std::string_view prefix : {transport::topics::kFollowerObjectPosePrefix, transport::topics::kTwinContactWrenchPrefix}) {
@@ -138,34 +132,25 @@ class Recording {
         log_(log),
         queue_(options.queue_capacity),
         bag_(open_writer(options)),
-        bus_(std::make_unique<Bus>(bus_options, "teleop_record")),
+        tap_(std::make_unique<BusTap>(
+            bus_options, "teleop_record", options.topics, [this](const TappedTopic& t) { return add_topic(t); },
+            [this](int id, const transport::RawSample& s) { queue_.push({id, s.reception_ns, monotonic_now_ns(), s}); })),
         disk_([this] { disk_loop(); }) {}
 
   ~Recording() {
     if (disk_.joinable()) stop_disk();
   }
 
-  // the fixed topics at once, so that a node starting after the recorder loses no first sample
-  void subscribe_known_topics() {
-    for (const transport::KnownTopic& k : transport::known_topics()) {
-      if (wanted(options_, k.name)) subscribe(k.name, *k.type);
-    }
-  }
-
+  // the fixed topics at once, so that a node starting after the recorder loses no first sample;
   // the families (one topic per object, per contact pair) as discovery finds them
-  void subscribe_new_topics() {
-    for (const TopicView& t : bus_->topics()) {
-      if (t.writers.empty() || subscribed_.count(t.name) > 0 || !wanted(options_, t.name)) continue;
-      const transport::SampleType* type = t.types.size() == 1 ? transport::find_sample_type(t.types.front()) : nullptr;
-      if (type != nullptr) subscribe(t.name, *type);  // not ours: nothing to decode it with later
-    }
-  }
+  void subscribe_known_topics() { tap_->subscribe_known_topics(); }
+  void subscribe_new_topics() { tap_->subscribe_new_topics(); }
 
   bool failed() const { return failed_.load(); }
 
   /// Stops the bus, writes what is queued, closes the bag. Throws the disk's error, if any.
   RecordResult finish() {
-    bus_.reset();  // no sample arrives after this
+    tap_->close();  // no sample arrives after this
     stop_disk();
     if (!failed()) guarded([&] { write_batch(std::chrono::milliseconds(0)); });  // what was still queued
     guarded([&] { bag_->close(); });
@@ -175,26 +160,23 @@ class Recording {
     result.bytes = bag_->stats().bytes;
     result.dropped = queue_.dropped();
     result.missed = gaps_.missed();
-    result.topics.assign(subscribed_.begin(), subscribed_.end());
+    result.topics.assign(tap_->subscribed().begin(), tap_->subscribed().end());
     for (const std::string& t : options_.topics) {
-      if (subscribed_.count(t) == 0) std::fprintf(log_, "no writer of %s appeared: not recorded\n", t.c_str());
+      if (tap_->subscribed().count(t) == 0) std::fprintf(log_, "no writer of %s appeared: not recorded\n", t.c_str());
     }
     return result;
   }
 
  private:
-  void subscribe(const std::string& name, const transport::SampleType& type) {
-    const transport::QosPreset qos = transport::topic_qos(name);
+  // the tap's new topic: a topic of the bag
+  int add_topic(const TappedTopic& topic) {
     const int id = [&] {
       std::lock_guard lock(bag_mutex_);
-      return bag_->add_topic(recorded_topic(name, type, qos_yaml(qos), options_.format));
+      return bag_->add_topic(recorded_topic(topic.name, *topic.type, qos_yaml(topic.qos), options_.format));
     }();
-    bus_->participant().make_raw_reader(name, type, qos, [queue = &queue_, id](const transport::RawSample& s) {
-      queue->push({id, s.reception_ns, monotonic_now_ns(), s});
-    });
-    subscribed_.insert(name);
-    std::fprintf(log_, "recording %s (%s)\n", name.c_str(), type.bag_name.c_str());
+    std::fprintf(log_, "recording %s (%s)\n", topic.name.c_str(), topic.type->bag_name.c_str());
     std::fflush(log_);
+    return id;
   }
 
   void write_batch(std::chrono::milliseconds wait) {
@@ -234,11 +216,10 @@ class Recording {
   std::mutex bag_mutex_;  // the disk thread writes, the recording's thread adds topics
   GapCounter gaps_;
   std::vector<Received> batch_;
-  std::set<std::string> subscribed_;
   std::atomic<bool> stop_{false};
   std::atomic<bool> failed_{false};
   std::string error_;
-  std::unique_ptr<Bus> bus_;
+  std::unique_ptr<BusTap> tap_;
   std::thread disk_;
 };
 

@@ -47,6 +47,13 @@ struct BusLayers::WrenchFeed {
   uint64_t last_seq = 0;
 };
 
+LayerChoice shown_layers(const PosedScene& scene, LayerChoice chosen) {
+  for (size_t a = 0; a < scene.arm_count(); ++a) {
+    if (scene.arm(a).state_topic.empty()) return chosen;
+  }
+  return {false, false};
+}
+
 BusLayers::BusLayers(transport::Participant& participant, const PosedScene& scene, LayerChoice choice) {
   auto add = [&](Layer layer, size_t arm, const std::string& topic) -> ArmFeed& {
     arms_.push_back(std::make_unique<ArmFeed>());

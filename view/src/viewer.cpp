@@ -29,14 +29,6 @@ bool layer_read(Layer layer, const LayerChoice& choice) {
          (layer == Layer::kLeader && choice.leader);
 }
 
-// the ghosts exist for arms on the arm topics; a scene posed only by its own topics (the hand) has
-// none to show
-LayerChoice shown_layers(const PosedScene& scene, LayerChoice chosen) {
-  for (size_t a = 0; a < scene.arm_count(); ++a) {
-    if (scene.arm(a).state_topic.empty()) return chosen;
-  }
-  return {false, false};
-}
 
 }  // namespace
 

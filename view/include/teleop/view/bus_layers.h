@@ -24,6 +24,10 @@ struct LayerChoice {
   bool leader = false;
 };
 
+/// The layers of `chosen` that `scene` can show: the ghosts exist for arms on the arm topics; a
+/// scene posed only by its own topics (the hand) has none.
+LayerChoice shown_layers(const PosedScene& scene, LayerChoice chosen);
+
 class BusLayers {
  public:
   /// Readers on `participant` for every arm of `scene` and each chosen layer (setup time).
