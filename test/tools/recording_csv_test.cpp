@@ -2,18 +2,15 @@
 // columns, a sequence that grows, a type without decoder, bytes that decode to nothing.
 #include <gtest/gtest.h>
 
-#include <fastdds/rtps/common/SerializedPayload.h>
-
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <sstream>
 
+#include "serialized_sample.h"
 #include "teleop/bag/bag_writer.h"
 #include "teleop/bag/mcap_writer.h"
 #include "teleop/tools/message_schemas.h"
 #include "teleop/tools/recording_csv.h"
-#include "teleop/transport/type_support.h"
 
 namespace teleop::tools {
 namespace {
@@ -21,19 +18,6 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr int64_t kStartNs = 1'700'000'000'000'000'000;
-
-template <typename T>
-std::vector<uint8_t> serialize(T sample) {
-  typename transport::PubSubTypeOf<T>::type support;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(support.m_typeSize);
-  EXPECT_TRUE(support.serialize(&sample, &payload));
-  return {payload.data, payload.data + payload.length};
-}
-
-template <typename T>
-const transport::SampleType& type_of() {
-  return *transport::find_sample_type(typename transport::PubSubTypeOf<T>::type().getName());
-}
 
 msg::JointState joint_state(uint64_t seq, std::vector<double> q) {
   msg::JointState s;
@@ -149,7 +133,7 @@ TEST_P(RecordingCsv, ATopicTheRecordingLacksIsAnErrorNamingThoseItHas) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BothFormats, RecordingCsv, ::testing::Values(RecordingFormat::kMcap, RecordingFormat::kSqlite3),
-                         [](const auto& info) { return info.param == RecordingFormat::kMcap ? "Mcap" : "Sqlite3"; });
+                         [](const auto& p) { return p.param == RecordingFormat::kMcap ? "Mcap" : "Sqlite3"; });
 
 }  // namespace
 }  // namespace teleop::tools

@@ -1,26 +1,11 @@
 // Any teleop sample as YAML from its serialized bytes; one field of it; its header in place.
 #include <gtest/gtest.h>
 
-#include <fastdds/rtps/common/SerializedPayload.h>
-
+#include "serialized_sample.h"
 #include "teleop/tools/sample_text.h"
-#include "teleop/transport/type_support.h"
 
 namespace teleop::tools {
 namespace {
-
-template <typename T>
-std::vector<uint8_t> serialize(T sample) {
-  typename transport::PubSubTypeOf<T>::type support;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(support.m_typeSize);
-  EXPECT_TRUE(support.serialize(&sample, &payload));
-  return {payload.data, payload.data + payload.length};
-}
-
-template <typename T>
-const transport::SampleType& type_of() {
-  return *transport::find_sample_type(typename transport::PubSubTypeOf<T>::type().getName());
-}
 
 msg::JointState joint_state() {
   msg::JointState s;
