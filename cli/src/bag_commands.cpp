@@ -38,11 +38,6 @@ int print_export(const tools::CsvExport& result) {
   return 0;
 }
 
-std::string export_dir(std::string recording) {
-  while (recording.size() > 1 && recording.back() == '/') recording.pop_back();
-  return recording + "_csv";
-}
-
 }  // namespace
 
 std::optional<int> BagCommands::run() const {
@@ -61,7 +56,7 @@ std::optional<int> BagCommands::run() const {
                 static_cast<unsigned long long>(n));
     return 0;
   }
-  if (export_->parsed()) return print_export(tools::export_csv(path_, out_.empty() ? export_dir(path_) : out_, topics_));
+  if (export_->parsed()) return print_export(tools::export_csv(path_, out_.empty() ? tools::recording_stem(path_) + "_csv" : out_, topics_));
   return std::nullopt;
 }
 

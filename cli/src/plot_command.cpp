@@ -5,29 +5,13 @@
 #include <stdexcept>
 
 #include "teleop/experiment/plots.h"
+#include "teleop/tools/bag_tools.h"
 #include "teleop/tools/recording_csv.h"
 
 namespace teleop::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-// an MCAP file, or a sqlite3 bag folder (its metadata.yaml, or a database a killed recorder left)
-bool is_recording(const std::string& path) {
-  std::error_code ec;
-  if (fs::is_regular_file(path, ec)) return true;
-  if (!fs::is_directory(path, ec)) return false;
-  if (fs::exists(fs::path(path) / "metadata.yaml", ec)) return true;
-  for (const auto& entry : fs::directory_iterator(path, ec)) {
-    if (entry.path().extension() == ".db3") return true;
-  }
-  return false;
-}
-
-std::string without_trailing_slash(std::string path) {
-  while (path.size() > 1 && path.back() == '/') path.pop_back();
-  return path;
-}
 
 // the recording's topics as CSV into OUT/csv (tools' export_csv), then their figures into OUT
 void plot_recording(const std::string& recording, const std::string& out_dir) {
@@ -55,8 +39,8 @@ PlotCommand::PlotCommand(CLI::App& app)
 
 int PlotCommand::run() const {
   try {
-    if (is_recording(run_dir_)) {
-      plot_recording(run_dir_, out_dir_.empty() ? without_trailing_slash(run_dir_) + "_plots" : out_dir_);
+    if (tools::is_recording(run_dir_)) {
+      plot_recording(run_dir_, out_dir_.empty() ? tools::recording_stem(run_dir_) + "_plots" : out_dir_);
       return 0;
     }
     // the traces first: a wrong folder is named before python is even looked for

@@ -9,6 +9,8 @@
 #include "teleop/common/data_paths.h"
 #include "teleop/experiment/trace.h"
 #include "teleop/runtime/shutdown_signal.h"
+#include "teleop/tools/bag_tools.h"
+#include "teleop/tools/recording_traces.h"
 #include "teleop/view/gl_window.h"
 #include "teleop/view/image.h"
 #include "teleop/view/video_writer.h"
@@ -26,6 +28,20 @@ void add_camera_options(CLI::App* command, Options& o, const std::string& camera
   command->add_option("--azimuth", o.azimuth_deg, "the free camera's azimuth [deg]");
   command->add_option("--elevation", o.elevation_deg, "the free camera's elevation [deg]");
   command->add_option("--distance", o.distance_m, "the free camera's distance [m]")->check(CLI::PositiveNumber);
+}
+
+// a recording's joint states as the traces of a run, in RECORDING_traces/ (render poses from
+// those); a recording that cannot be read, or holds no joint state, is a TraceError like a bad trace
+std::string traces_of_recording(const std::string& recording) {
+  const std::string dir = tools::recording_stem(recording) + "_traces";
+  try {
+    for (const std::string& file : tools::write_recording_traces(recording, dir)) {
+      std::printf("teleop render: %s from %s\n", file.c_str(), recording.c_str());
+    }
+  } catch (const std::runtime_error& e) {
+    throw experiment::TraceError(e.what());
+  }
+  return dir;
 }
 
 }  // namespace
@@ -81,9 +97,10 @@ void ViewCommands::add_render(CLI::App& app) {
   render_
       ->add_option("run_dir", o.run_dir,
                    "the run's trace folder (teleop launch --trace-dir, or <report dir>/<run>/<profile> of an "
-                   "experiment): follower.csv, and twin.csv when there is one")
+                   "experiment): follower.csv, and twin.csv when there is one; or a recording (an MCAP file, a "
+                   "sqlite3 bag folder), whose joint states become such traces in RUN_DIR_traces/")
       ->required()
-      ->check(CLI::ExistingDirectory);
+      ->check(CLI::ExistingPath);
   render_
       ->add_option("-c,--config", o.config_path,
                    "the follower or twin config whose scene to draw (default: follower, or follower_box_task for a "
@@ -156,6 +173,7 @@ std::optional<int> ViewCommands::run() {
       return view::run_view(o, stdout);
     }
     view::RenderOptions o = render_options_;
+    if (tools::is_recording(o.run_dir)) o.run_dir = traces_of_recording(o.run_dir);
     o.twin = !no_twin_;
     o.contacts = !no_contacts_;
     o.shadows = !no_shadows_;

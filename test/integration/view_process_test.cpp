@@ -2,7 +2,8 @@
 // OpenGL; test/support/virtual_display.h), issue 22: the window opens on the demo's follower and
 // twin and shows the robot where the camera looks; a follower state published by the test moves
 // the picture, a twin state the ghost; a signal or --frames ends it with 0; without a display it
-// says so and exits 1; a recorded stiff-wall run becomes an MP4 that ffprobe reads. Small
+// says so and exits 1; a recorded stiff-wall run becomes an MP4 that ffprobe reads, a recording
+// of the bus poses the robot as the live view does. Small
 // windows (320 x 240) and few frames: software OpenGL pays for every pixel.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -10,6 +11,7 @@
 #include <atomic>
 #include <csignal>
 #include <cstdlib>
+#include <filesystem>
 #include <regex>
 #include <sstream>
 #include <thread>
@@ -262,6 +264,36 @@ TEST(ViewWithoutDisplayTest, SaysThereIsNoDisplayAndExits1) {
   EXPECT_NE(r.output.find("xvfb-run"), std::string::npos) << r.output;
   EXPECT_EQ(render.exit_status, 1) << render.output;
   EXPECT_NE(render.output.find("teleop render: no display"), std::string::npos) << render.output;
+}
+
+// a recording, as `teleop record` writes it, rendered like a run: its follower and twin joint
+// states become the run's traces, the robot stands where it was recorded
+TEST_F(ViewProcessTest, RenderPosesTheRobotFromARecording) {
+  StatePublisher publisher(domain);
+  publisher.follower(turned(0.6));
+  publisher.twin(kFacingWall);
+  const std::string recording = dir + "/r.mcap";
+  const ProcessResult record = run_process(
+      tool({"record", "-o", recording, "--topics", "teleop/follower/joint_state,teleop/twin/joint_state", "--duration",
+            "3"},
+           domain),
+      30s);
+  ASSERT_EQ(record.exit_status, 0) << record.output;
+  const ProcessResult render = run_process({bin("teleop"), "render", recording, "--width", "320", "--height", "240",
+                                            "--fps", "10", "--no-overlay", "--still", dir + "/recorded.png"},
+                                           120s);
+  ASSERT_EQ(render.exit_status, 0) << render.output;
+  EXPECT_NE(render.output.find(recording + "_traces/follower.csv from " + recording), std::string::npos)
+      << render.output;
+  EXPECT_NE(render.output.find("(follower.csv, twin.csv)"), std::string::npos) << render.output;
+  EXPECT_TRUE(std::filesystem::exists(recording + "_traces/run.mp4")) << render.output;
+
+  // the same pose live in `teleop view`: the recorded still shows the arm where the live one is
+  ASSERT_EQ(view("live.png").exit_status, 0);
+  const view::Image recorded = picture("recorded.png");
+  const view::Image live = picture("live.png");
+  ASSERT_EQ(recorded.width, 320);
+  EXPECT_LT(difference(recorded, live).pixels, 320 * 240 / 50) << "the recorded pose differs from the live one";
 }
 
 // a short stiff-wall run (MMT: follower, twin, leader's haptic arm) rendered from its traces

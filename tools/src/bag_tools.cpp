@@ -2,6 +2,7 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include <filesystem>
 #include <map>
 
 #include "teleop/bag/bag_reader.h"
@@ -29,6 +30,23 @@ std::string bag_info(const std::string& path) {
   }
   if (!reader.warning().empty()) text += "warning:  " + reader.warning() + "\n";
   return text;
+}
+
+bool is_recording(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_regular_file(path, ec)) return true;
+  if (!fs::is_directory(path, ec)) return false;
+  if (fs::exists(fs::path(path) / "metadata.yaml", ec)) return true;
+  for (const auto& entry : fs::directory_iterator(path, ec)) {
+    if (entry.path().extension() == ".db3") return true;
+  }
+  return false;
+}
+
+std::string recording_stem(std::string path) {
+  while (path.size() > 1 && path.back() == '/') path.pop_back();
+  return path;
 }
 
 RecordingFormat format_of_path(const std::string& path) {

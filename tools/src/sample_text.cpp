@@ -1,11 +1,10 @@
 #include "teleop/tools/sample_text.h"
 
-#include <fastdds/rtps/common/SerializedPayload.h>
-
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
 
+#include "deserialized.h"
 #include "field_columns.h"
 #include "field_writer.h"
 #include "teleop/runtime/status_names.h"
@@ -222,23 +221,6 @@ void walk(const msg::ObjectPose& s, W& w) {
   w.value("body", text(s.body()));
   walk("world_pose", s.world_pose(), w);
   walk("world_twist", s.world_twist(), w);
-}
-
-template <typename T>
-T deserialized(const std::vector<uint8_t>& cdr) {
-  typename transport::PubSubTypeOf<T>::type support;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<uint32_t>(cdr.size()));
-  std::memcpy(payload.data, cdr.data(), cdr.size());
-  payload.length = static_cast<uint32_t>(cdr.size());
-  T sample;
-  bool ok = false;
-  try {
-    ok = support.deserialize(&payload, &sample);
-  } catch (const std::exception&) {
-    ok = false;  // fastcdr throws on a buffer too short for what it reads
-  }
-  if (!ok) throw std::runtime_error("the bytes do not hold a " + std::string(support.getName()));
-  return sample;
 }
 
 template <typename... T>

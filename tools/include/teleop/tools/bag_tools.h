@@ -18,6 +18,14 @@ std::string bag_info(const std::string& path);
 /// messages copied.
 uint64_t convert_recording(const std::string& in, const std::string& out, RecordingFormat format);
 
+/// Whether `path` is a recording rather than a run's trace folder: a file (MCAP), or a folder
+/// with a sqlite3 bag's metadata.yaml or database (one a killed recorder left has no metadata).
+bool is_recording(const std::string& path);
+
+/// What a recording's derived outputs are named after: its path without a trailing '/'
+/// ("run1/" -> "run1": its CSV export is run1_csv, its figures run1_plots).
+std::string recording_stem(std::string path);
+
 /// The format a path names: a ".mcap" file is MCAP, anything else a sqlite3 bag folder.
 RecordingFormat format_of_path(const std::string& path);
 
