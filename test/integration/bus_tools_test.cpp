@@ -115,12 +115,15 @@ TEST_F(BusToolsTest, TopicListEchoAndHzSeeTheDemosTopics) {
   EXPECT_EQ(demo.stop(SIGINT, 20s), 0) << demo.output();
 }
 
+// The monitor first, then the nodes it is to show. Started beside running nodes under ASan, the
+// monitor's start starved the follower in bursts of short stalls, which the simulated arm does not
+// yet survive (docs/reliability.md, "Stalls"): the follower then tripped its speed reflex before
+// the monitor could show it running.
 TEST_F(BusToolsTest, MonitorShowsEveryNodeAndTheFaultAKilledPeerCauses) {
+  RunningProcess monitor({bin("teleop"), "monitor", "--lines", "--duration", "12", "--domain", domain});
   RunningProcess leader(node("leader", 30));
   RunningProcess follower(node("follower", 30));
-  follower.run_for(2000ms);  // the pair finds each other
-  RunningProcess monitor({bin("teleop"), "monitor", "--lines", "--duration", "8", "--domain", domain});
-  ASSERT_TRUE(monitor.wait_for_output("node=leader role=leader state=running", 10s)) << monitor.output();
+  ASSERT_TRUE(monitor.wait_for_output("node=leader role=leader state=running", 15s)) << monitor.output();
   ASSERT_TRUE(monitor.wait_for_output("node=follower role=follower state=running", 5s)) << monitor.output();
   EXPECT_NE(monitor.output().find("flow[teleop/leader/joint_command writers=1"), std::string::npos) << monitor.output();
   leader.stop(SIGKILL, 5s);
