@@ -7,6 +7,7 @@
 # Extra arguments go to `teleop experiment`, e.g. --profiles lan,wan-35ms or --runs pfc,pfc_tdpa.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true  # a clone in any folder reuses ccache (run_tests.sh)
 
 # only what the demo needs: its packages, and the CLI with the three nodes (no tests, no benchmarks)
 ./scripts/setup.sh --demo
