@@ -40,22 +40,24 @@ TEST(TwoArmProcesses, EachHandMovesOnlyItsOwnArm) {
   // wrist joints only: the hands turn in place, clear of the box between them
   write_file(dir + "/left.csv", recording(kLeftHome, 6, 0.4));
   write_file(dir + "/right.csv", recording(kRightHome, 4, 0.3));
-  auto args = [&](const std::string& node, const std::string& config) {
+  auto args = [&](const std::string& node, const std::string& config, const std::string& seconds) {
     return std::vector<std::string>{bin("teleop_" + node), "--config", source("config/nodes/" + config), "--domain",
                                     std::to_string(domain), "--report", dir + "/" + node + ".yaml", "--trace",
-                                    dir + "/" + node + ".csv", "--duration", "4"};
+                                    dir + "/" + node + ".csv", "--duration", seconds};
   };
-  auto leader_args = args("leader", "leader_box_task.yaml");
+  // the operator stays 2 s longer than the robot: the follower ends still commanded (running), as
+  // it would not if its longer start (two arms and a box in MuJoCo) let the leader end first
+  auto leader_args = args("leader", "leader_box_task.yaml", "6");
   for (const std::string side : {"left", "right"}) {
     leader_args.insert(leader_args.end(), {"--set", "leader.arms." + side + ".recording=" + dir + "/" + side + ".csv"});
   }
-  auto follower_args = args("follower", "follower_box_task.yaml");
+  auto follower_args = args("follower", "follower_box_task.yaml", "4");
   // the box task's probe, as its experiment asks for it
   follower_args.insert(follower_args.end(), {"--set", "node.probes=[box_task]"});
   RunningProcess follower(follower_args);
   RunningProcess leader(leader_args);
-  ASSERT_EQ(leader.stop(0, std::chrono::seconds(30)), 0) << leader.output();
   ASSERT_EQ(follower.stop(0, std::chrono::seconds(30)), 0) << follower.output();
+  ASSERT_EQ(leader.stop(0, std::chrono::seconds(30)), 0) << leader.output();
 
   const auto trace = experiment::read_trace(dir + "/follower.csv");
   EXPECT_NEAR(last(trace.column("left_q_6")), kLeftHome[6] + 0.4, 0.03) << "the left hand turned the left wrist";
