@@ -45,18 +45,20 @@ ProcessResult run_experiment(const std::string& file, const std::string& report_
 }
 
 // the shipped leader and follower over two profiles: both runs happen and trace, and every
-// metric the analysis reads from their traces is there (the values are the architectures' business)
+// metric the analysis reads from their traces is there (the values are the architectures' business).
+// The run lasts 4 s from the nodes' launch for a hold window 1-2 s after the leader's first sample:
+// in CI's ASan stage a node took over a second to start, and 2 s left the window empty.
 TEST(ExperimentProcess, RunsEveryProfileWithTheRealNodesAndAnalysesTheirTraces) {
   const std::string dir = make_temp_dir();
   write_file(dir + "/scenario.yaml",
-             "scenario: {name: scripted, duration_s: 2}\nnodes:\n"
+             "scenario: {name: scripted, duration_s: 4}\nnodes:\n"
              "  - {name: follower, executable: teleop_follower, config: " +
                  source("config/nodes/follower.yaml") +
                  "}\n"
                  "  - {name: leader, executable: teleop_leader, config: " +
                  source("config/nodes/leader.yaml") + ", set: {leader.frequency_hz: 1.0}}\n");
   write_file(dir + "/e.yaml",
-             "experiment:\n  name: tiny\n  duration_s: 2\n  seed: 7\n  profiles: [none, wan-35ms]\n"
+             "experiment:\n  name: tiny\n  duration_s: 4\n  seed: 7\n  profiles: [none, wan-35ms]\n"
              "  runs:\n    - {name: scripted, scenario: scenario.yaml}\n"
              "  analysis: {settle_s: 0.5, hold_window_s: [1.0, 2.0]}\n");
   const ProcessResult r = run_experiment(dir + "/e.yaml", dir + "/out");
