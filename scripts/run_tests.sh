@@ -7,7 +7,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 # ccache (the presets use it when installed) keys what it compiled on paths relative to the clone,
 # so a fresh clone in any folder reuses what a build of the same sources compiled before: without
-# this a clone outside ccache's configured base_dir compiles all three builds again (40 minutes)
+# this a clone outside ccache's configured base_dir compiled all three builds again, and CI ran out
+# of its 90 minutes
 export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true
 
 # each stage's wall time, so a run's budget (CI: 60 min on 2 cores) is visible stage by stage
