@@ -71,7 +71,8 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<robot::
   st.arm(transport::arm_label(config.arm));
   transport::presize_joint_state(st, config.joints);
   wrench_pub_.sample().frame("base");
-  if (hardware_->read(arm_) != robot::HardwareStatus::kOk) throw std::runtime_error("the robot hardware cannot be read");
+  // a state gone stale since the robot connected still says where it is: the first cycles hold it
+  if (hardware_->read(arm_) == robot::HardwareStatus::kFault) throw std::runtime_error("the robot hardware cannot be read");
   // until a command arrives, hold the pose the robot is in, from the torque it holds it with
   hold_current_pose(active_, config_.hold_stiffness_nm_per_rad, config_.hold_damping_nms_per_rad);
   limiter_.reset(arm_.tau_measured_nm);
@@ -158,14 +159,14 @@ bool FollowerNode::source_lost(double silence_s) const {
   return false;
 }
 
-void FollowerNode::run_watchdog(int64_t now_ns, bool stalled) {
+void FollowerNode::run_watchdog(int64_t now_ns, bool stalled, bool robot_current) {
   // a hardware fault is not cleared by commands arriving: it needs an operator
   if (state_ == msg::STATE_FAULT) return;
   const double silence_s = static_cast<double>(now_ns - last_valid_command_ns_) * 1e-9;
   const bool lost = source_lost(silence_s);
   // our own loop missed more than the timeout: what was drained now is a backlog, and the newest
   // command of it must not act as a step; hold for this cycle and rejoin from the held pose
-  if (!stalled && source_ != Source::kNone && silence_s < config_.command_timeout_s && !lost) {
+  if (robot_current && !stalled && source_ != Source::kNone && silence_s < config_.command_timeout_s && !lost) {
     // a latched reflex holds until reset, however well the commands flow
     if (reflex_.latched()) return;
     // commands (re)start after a hold: the robot joins them from the pose it held
@@ -176,10 +177,16 @@ void FollowerNode::run_watchdog(int64_t now_ns, bool stalled) {
   if (state_ == msg::STATE_RUNNING) {
     // commands stopped: hold the pose we are at, in joint impedance, until they come back
     state_ = msg::STATE_SAFE_HOLD;
-    hold_cause_ = stalled ? msg::FAULT_LOOP_OVERRUN : lost ? msg::FAULT_PEER_LOST : msg::FAULT_STALE_INPUT;
-    ++(stalled ? stall_holds_ : watchdog_trips_);
-    if (lost) ++liveliness_trips_;
-    if (!stalled) watchdog_latency_max_s_ = std::max(watchdog_latency_max_s_, silence_s);
+    if (!robot_current) {
+      // the robot's measured state is the input that went stale: it holds by its own means
+      hold_cause_ = msg::FAULT_STALE_INPUT;
+      ++robot_state_holds_;
+    } else {
+      hold_cause_ = stalled ? msg::FAULT_LOOP_OVERRUN : lost ? msg::FAULT_PEER_LOST : msg::FAULT_STALE_INPUT;
+      ++(stalled ? stall_holds_ : watchdog_trips_);
+      if (lost) ++liveliness_trips_;
+      if (!stalled) watchdog_latency_max_s_ = std::max(watchdog_latency_max_s_, silence_s);
+    }
     hold_current_pose(active_, config_.hold_stiffness_nm_per_rad, config_.hold_damping_nms_per_rad);
     // the channel's session ended with the command source: both ends start their bookkeeping afresh
     architecture_->restart();
@@ -266,22 +273,35 @@ void FollowerNode::publish_state() {
   wrench_pub_.publish();
 }
 
+bool FollowerNode::command_robot() {
+  run_reflex();
+  apply_passivity();
+  command_torque(*controlled_);
+  // a robot commanded in positions tracks the joint reference; a Cartesian or gravity command has
+  // none in joint space, so such a robot is told to stay where it is
+  const ValidCommand& c = *controlled_;
+  const bool joint_space = c.mode == msg::CONTROL_JOINT_IMPEDANCE;
+  hardware_->set_reference(joint_space ? c.q_des_rad : arm_.q_rad, joint_space ? c.dq_des_radps : JointVector{});
+  return hardware_->write(command_nm_) == robot::HardwareStatus::kOk;
+}
+
 void FollowerNode::cycle(const CycleTick& tick) {
   // read, compute, write: the torque acts on the state it was computed from, also on a scene
   // shared by several arms, which moves on only once every arm wrote (follower_arms.cpp)
-  const bool read = hardware_->read(arm_) == robot::HardwareStatus::kOk;
-  control_.estimate(arm_);
+  const robot::HardwareStatus read = hardware_->read(arm_);
+  // nothing is computed from a stale state: the robot holds by its own means until it is current
+  const bool robot_current = read != robot::HardwareStatus::kStale;
+  if (robot_current) control_.estimate(arm_);
   // the watchdog counts control cycles (their deadlines): a cycle released late neither
   // shortens nor stretches the timeout
   const bool stalled = stall_watch_.stalled(tick);
   take_commands(tick.deadline_ns);
   take_reset_requests();
-  run_watchdog(tick.deadline_ns, stalled);
-  run_reflex();
-  apply_passivity();
-  command_torque(*controlled_);
+  run_watchdog(tick.deadline_ns, stalled, robot_current);
+  if (!robot_current) ++robot_stale_cycles_;
+  const bool written = robot_current ? command_robot() : hardware_->hold() == robot::HardwareStatus::kOk;
   // a robot that refuses a command or cannot be read is a fault: hold what we have, report it
-  if (hardware_->write(command_nm_) != robot::HardwareStatus::kOk || !read) {
+  if (!written || read == robot::HardwareStatus::kFault) {
     ++hardware_faults_;
     state_ = msg::STATE_FAULT;
   }
@@ -312,6 +332,8 @@ void FollowerNode::fill_report(runtime::NodeReport& report) const {
   auto counter = [&](const char* name, double value) { report.counters.emplace_back(name, value); };
   counter("watchdog_trips", static_cast<double>(watchdog_trips_));
   counter("stall_holds", static_cast<double>(stall_holds_));
+  counter("robot_state_holds", static_cast<double>(robot_state_holds_));
+  counter("robot_stale_cycles", static_cast<double>(robot_stale_cycles_));
   counter("liveliness_trips", static_cast<double>(liveliness_trips_));
   counter("watchdog_latency_max_ms", watchdog_latency_max_s_ * 1e3);
   counter("torque_saturations", static_cast<double>(limiter_.saturations()));

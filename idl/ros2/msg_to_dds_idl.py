@@ -9,6 +9,9 @@ and wire layout are what a ROS 2 node (rmw_fastrtps) sends and expects; teleop's
 samples between those types and teleop's own (test/transport/ros2/).
 
 usage: msg_to_dds_idl.py --package teleop_msgs --out DIR FILE.msg...   writes DIR/<Type>_.idl
+
+A message of another package (std_msgs/Header) is included as "std_msgs/msg/Header_.idl": write
+each package into <root>/<package>/msg and compile with -I <root>.
 """
 
 import argparse
@@ -56,7 +59,10 @@ def idl_base_type(base, strbound, package, includes):
         raise MsgError(f'{base}<={strbound}: only strings have an upper bound')
     pkg, _, name = base.rpartition('/')
     if pkg and pkg != package:
-        raise MsgError(f'{base}: messages of other packages are not supported here')
+        # another package's message: its IDL is found as <pkg>/msg/<Name>_.idl beside this
+        # package's folder (--out <root>/<package>/msg), as rosidl lays them out
+        includes.add(f'{pkg}/msg/{name}_.idl')
+        return f'{pkg}::msg::dds_::{name}_'
     includes.add(f'{name}_.idl')
     return f'{package}::msg::dds_::{name}_'
 

@@ -59,8 +59,12 @@ class FollowerNode final : public runtime::NodeLogic {
   void take(transport::Subscription<Command>& commands, Source source, uint64_t& last_session, int64_t now_system_ns,
             int64_t now_ns);
   void take_reset_requests();
-  /// `stalled`: the loop missed more than the command timeout since its last cycle.
-  void run_watchdog(int64_t now_ns, bool stalled);
+  /// `stalled`: the loop missed more than the command timeout since its last cycle;
+  /// `robot_current`: the robot's state is current (a stale one holds the robot by its own means).
+  void run_watchdog(int64_t now_ns, bool stalled, bool robot_current);
+  /// Computes and writes the torque (and hands a position robot its reference); false when the
+  /// robot refused it.
+  bool command_robot();
   void run_reflex();
   bool source_lost(double silence_s) const;
   /// Makes `hold` a joint impedance at the current pose with these gains.
@@ -108,6 +112,9 @@ class FollowerNode final : public runtime::NodeLogic {
   // counters and metrics for the report
   uint64_t watchdog_trips_ = 0;
   uint64_t stall_holds_ = 0;
+  // holds because the robot's own state was stale, and the cycles it held through hold()
+  uint64_t robot_state_holds_ = 0;
+  uint64_t robot_stale_cycles_ = 0;
   // why the robot holds (msg::FAULT_*), while it holds
   uint32_t hold_cause_ = msg::FAULT_STALE_INPUT;
   StallWatch stall_watch_;

@@ -23,7 +23,14 @@ struct ArmState {
   std::array<double, 3> torque_ext_nm{};
 };
 
-enum class HardwareStatus { kOk, kFault };
+enum class HardwareStatus {
+  kOk,
+  /// The robot failed (a drive fault, a refused command): it needs an operator.
+  kFault,
+  /// The robot's state is not current (late, or invalid since): read() gave the last one known,
+  /// from which no torque may be computed; the follower holds through hold() until it is current.
+  kStale,
+};
 
 /// What the robot itself can do, per joint (infinite where it has no limit).
 struct HardwareLimits {
@@ -43,6 +50,16 @@ class RobotHardware {
   /// Commands joint torques for the next period (on top of the robot's own gravity compensation
   /// when compensates_gravity()). Real-time safe.
   [[nodiscard]] virtual HardwareStatus write(const JointVector& tau_nm) = 0;
+  /// The joint reference the follower's law tracks this period (position, velocity), given before
+  /// write(): a robot commanded in positions or velocities (a ros2_control position controller)
+  /// sends it instead of the torque; one commanded in torque ignores it. Real-time safe.
+  virtual void set_reference(const JointVector& q_rad, const JointVector& dq_radps) {
+    (void)q_rad;
+    (void)dq_radps;
+  }
+  /// Holds still by the robot's own means (zero torque on its gravity compensation, its position
+  /// controller on the pose it had) instead of a write(), while its state is stale. Real-time safe.
+  [[nodiscard]] virtual HardwareStatus hold() { return HardwareStatus::kOk; }
   /// True when the robot adds g(q) to every commanded torque itself (as the Franka interface
   /// does): the follower then sends its controller's torque minus its own g(q).
   virtual bool compensates_gravity() const = 0;

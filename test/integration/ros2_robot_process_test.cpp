@@ -1,0 +1,180 @@
+// The follower teleoperating a ROS 2 robot it shares no code with: the stand-in robot on Cyclone DDS
+// (test/robot/ros2/standin_robot.cpp: a MuJoCo arm behind ros2_control's topics and types),
+// configured as the shipped Franka example (config/nodes/follower_franka_ros2.yaml) on a domain of
+// its own. The same leader script drives the follower on the MuJoCo backend for reference.
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <cstdlib>
+
+#include "process_helpers.h"
+#include "report_counter.h"
+#include "teleop/runtime/node_report.h"
+
+namespace teleop::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+constexpr const char* kJoints = "fr3_joint1,fr3_joint2,fr3_joint3,fr3_joint4,fr3_joint5,fr3_joint6,fr3_joint7";
+
+struct Robot {
+  std::string interface = "effort";
+  bool shuffle = false;
+  double pause_at_s = -1;  // after the first command
+};
+
+struct Site : ProcessSite {
+  int robot_domain = unique_domain();
+
+  // the Franka example on this test's robot domain, found by unicast on loopback (as the stand-in is)
+  std::string follower_config(const Robot& robot) const {
+    std::vector<std::pair<std::string, std::string>> edits = {
+        {"      domain_id: 0\n", "      domain_id: " + std::to_string(robot_domain) +
+                                     "\n      initial_peers: [127.0.0.1]\n      interface_whitelist: [127.0.0.1]\n"}};
+    if (robot.interface != "effort") {
+      edits.push_back({"interface: effort", "interface: " + robot.interface});
+      edits.push_back({"/forward_effort_controller/", "/forward_" + robot.interface + "_controller/"});
+    }
+    return config_copy(dir, "follower_franka_ros2.yaml", edits);
+  }
+
+  std::vector<std::string> standin(const Robot& robot, double duration_s) const {
+    std::vector<std::string> argv = {bin("teleop_ros2_standin_robot"), "--model", source("config/models/scene_wall.xml"),
+                                     "--keyframe", "facing_wall", "--joints", kJoints, "--domain",
+                                     std::to_string(robot_domain), "--interface", robot.interface,
+                                     "--duration-s", std::to_string(duration_s)};
+    // the gripper's joint the example ignores, first, and the arm's joints reversed
+    if (robot.shuffle) argv.insert(argv.end(), {"--shuffle", "--extra-joint", "fr3_finger_joint1"});
+    if (robot.pause_at_s >= 0) argv.insert(argv.end(), {"--pause-at-s", std::to_string(robot.pause_at_s), "--pause-ms", "50"});
+    return argv;
+  }
+
+  // the shipped leader's sine, which presses the flange into the wall, for 6 s
+  void run_leader(const std::string& tag) const {
+    std::vector<std::string> leader = args("leader", source("config/nodes/leader.yaml"), tag);
+    leader.insert(leader.end(), {"--duration", "6"});
+    const ProcessResult result = run_process(leader, 60s);
+    ASSERT_EQ(result.exit_status, 0) << result.output;
+  }
+
+  // a follower that outlives the leader by a second or so, then ends by itself
+  std::vector<std::string> follower(const std::string& config, const std::string& tag) const {
+    std::vector<std::string> argv = args("follower", config, tag);
+    argv.insert(argv.end(), {"--duration", "30"});
+    return argv;
+  }
+};
+
+struct Outcome {
+  runtime::NodeReport follower;
+  std::string follower_log;
+  std::string robot_log;
+};
+
+// teleoperation of the stand-in robot: the follower is stopped (SIGTERM) once the leader ended
+Outcome teleoperate_ros2_robot(const Site& site, const Robot& robot, const std::string& tag) {
+  RunningProcess standin(site.standin(robot, 60));
+  EXPECT_TRUE(standin.wait_for_output("robot of 7 joints", 20s)) << standin.output();
+  RunningProcess follower(site.follower(site.follower_config(robot), tag));
+  EXPECT_TRUE(follower.wait_for_output("starting\n", 30s)) << follower.output();
+  site.run_leader("leader_" + tag);
+  follower.run_for(500ms);
+  EXPECT_EQ(follower.stop(SIGTERM, 20s), 0) << follower.output();
+  // the follower's last word to the controller is the hold; the robot then times out on its own
+  EXPECT_TRUE(standin.wait_for_output("command timeout: holding", 10s)) << standin.output();
+  (void)standin.stop(SIGTERM, 10s);
+  return {runtime::read_report(site.report_path(tag)), follower.output(), standin.output()};
+}
+
+runtime::NodeReport teleoperate_mujoco_robot(const Site& site) {
+  RunningProcess follower(site.follower(source("config/nodes/follower.yaml"), "mujoco"));
+  EXPECT_TRUE(follower.wait_for_output("starting\n", 30s)) << follower.output();
+  site.run_leader("leader_mujoco");
+  follower.run_for(500ms);
+  EXPECT_EQ(follower.stop(SIGTERM, 20s), 0) << follower.output();
+  return runtime::read_report(site.report_path("mujoco"));
+}
+
+void expect_within_10_percent(const runtime::NodeReport& ros2, const runtime::NodeReport& mujoco, const std::string& name) {
+  const double reference = counter(mujoco, name);
+  EXPECT_NEAR(counter(ros2, name), reference, 0.1 * reference) << name << " of the ROS 2 robot against the MuJoCo backend's";
+}
+
+TEST(Ros2Robot, EffortRobotWithShuffledJointsTracksAndTouchesTheWallAsTheSimulation) {
+  Site site;
+  const Outcome ros2 = teleoperate_ros2_robot(site, {"effort", true, -1}, "ros2");
+  const runtime::NodeReport mujoco = teleoperate_mujoco_robot(site);
+  EXPECT_EQ(counter(ros2.follower, "hardware_faults"), 0.0) << ros2.follower_log;
+  // the shuffled names are mapped: the wall contact is the simulation's
+  expect_within_10_percent(ros2.follower, mujoco, "peak_external_force_n");
+  // the robot's state comes a cycle later than the simulation's, on another DDS: its tracking
+  // error (the follower's command against the robot's pose) has ranged over 0.6-1.0 times the
+  // simulation's (docs/robots.md), never above
+  EXPECT_GT(counter(ros2.follower, "tracking_rmse_rad"), 0.0);
+  EXPECT_LT(counter(ros2.follower, "tracking_rmse_rad"), 1.5 * counter(mujoco, "tracking_rmse_rad"));
+  ::testing::Test::RecordProperty("tracking_rmse_ratio", std::to_string(counter(ros2.follower, "tracking_rmse_rad") /
+                                                                         counter(mujoco, "tracking_rmse_rad")));
+  EXPECT_NE(ros2.robot_log.find("wrong size 0"), std::string::npos) << ros2.robot_log;
+}
+
+TEST(Ros2Robot, FollowerHoldsWhileTheRobotsStateStopsAndResumesAfter) {
+  Site site;
+  const Outcome ros2 = teleoperate_ros2_robot(site, {"effort", false, 2.0}, "ros2_paused");
+  EXPECT_EQ(counter(ros2.follower, "hardware_faults"), 0.0) << ros2.follower_log;
+  // 50 ms without the robot's state: a hold, and the commands are followed again after it
+  ASSERT_NE(ros2.robot_log.find("state paused for 50 ms"), std::string::npos) << ros2.robot_log;
+  EXPECT_GE(counter(ros2.follower, "robot_state_holds"), 1.0);
+  EXPECT_GE(counter(ros2.follower, "robot_stale_cycles"), 20.0) << "50 ms of silence, 20 ms of them tolerated";
+  const size_t hold = ros2.follower_log.find("running -> safe_hold (stale_input)");
+  ASSERT_NE(hold, std::string::npos) << ros2.follower_log;
+  EXPECT_NE(ros2.follower_log.find("safe_hold -> running", hold), std::string::npos) << ros2.follower_log;
+}
+
+TEST(Ros2Robot, PositionRobotFollowsTheJointReference) {
+  Site site;
+  const Outcome ros2 = teleoperate_ros2_robot(site, {"position", false, -1}, "ros2_position");
+  EXPECT_EQ(counter(ros2.follower, "hardware_faults"), 0.0) << ros2.follower_log;
+  EXPECT_EQ(counter(ros2.follower, "robot_state_holds"), 0.0) << ros2.follower_log;
+  EXPECT_GT(counter(ros2.follower, "tracking_rmse_rad"), 0.0);
+  EXPECT_LT(counter(ros2.follower, "tracking_rmse_rad"), 0.05) << "the robot's own position loop tracks the reference";
+  EXPECT_NE(ros2.robot_log.find("wrong size 0"), std::string::npos) << ros2.robot_log;
+}
+
+TEST(Ros2Robot, KilledFollowerLeavesTheRobotHoldingWithinItsCommandTimeout) {
+  Site site;
+  const Robot robot;
+  RunningProcess standin(site.standin(robot, 60));
+  ASSERT_TRUE(standin.wait_for_output("robot of 7 joints", 20s)) << standin.output();
+  RunningProcess follower(site.follower(site.follower_config(robot), "killed"));
+  ASSERT_TRUE(follower.wait_for_output("starting\n", 30s)) << follower.output();
+  std::vector<std::string> leader_args = site.args("leader", source("config/nodes/leader.yaml"), "leader");
+  RunningProcess leader(leader_args);
+  ASSERT_TRUE(standin.wait_for_output("commanded at", 30s)) << standin.output() << follower.output();
+  standin.run_for(1500ms);  // mid-motion
+  (void)follower.stop(SIGKILL, 10s);
+  // the stand-in holds once 100 ms passed without a command (its --command-timeout-ms), and stops
+  ASSERT_TRUE(standin.wait_for_output("stopped", 10s)) << standin.output();
+  (void)leader.stop(SIGTERM, 10s);
+  (void)standin.stop(SIGTERM, 10s);
+  const std::string& log = standin.output();
+  const size_t holding = log.find("command timeout: holding ");
+  ASSERT_NE(holding, std::string::npos) << log;
+  const double held_after_ms = std::strtod(log.c_str() + holding + std::string("command timeout: holding ").size(), nullptr);
+  EXPECT_GE(held_after_ms, 100.0);
+  EXPECT_LE(held_after_ms, 150.0) << "the robot reacts at its command timeout";
+}
+
+TEST(Ros2Robot, ShippedConfigStartsAndNamesTheRobotItDoesNotFind) {
+  Site site;
+  std::vector<std::string> argv = site.args("follower", source("config/nodes/follower_franka_ros2.yaml"), "absent");
+  argv.insert(argv.end(), {"--set", "follower.ros2.connect_timeout_s=0.5", "--set",
+                           "follower.ros2.transport.domain_id=" + std::to_string(site.robot_domain)});
+  const ProcessResult result = run_process(argv, 60s);
+  EXPECT_NE(result.exit_status, 0);
+  EXPECT_NE(result.output.find("no sensor_msgs/JointState on /joint_states within ros2.connect_timeout_s"), std::string::npos)
+      << result.output;
+}
+
+}  // namespace
+}  // namespace teleop::test
