@@ -79,8 +79,16 @@ void ArmControl::estimate(const robot::ArmState& arm) {
   const control::JointVector applied = first_joints(arm.tau_measured_nm);
   observer_.update(state_, applied);
   direct_.update(state_, applied);
-  hardware_estimate_ = first_joints(arm.tau_ext_nm);
   dynamics_.update(state_);
+  if (arm.wrench_measured) {
+    // a wrench measured at the end effector, as the joint torques it makes
+    control::Vector6 w;
+    w << arm.force_ext_n[0], arm.force_ext_n[1], arm.force_ext_n[2], arm.torque_ext_nm[0], arm.torque_ext_nm[1],
+        arm.torque_ext_nm[2];
+    hardware_estimate_ = dynamics_.jacobian().transpose() * w;
+  } else {
+    hardware_estimate_ = first_joints(arm.tau_ext_nm);
+  }
   wrench_ = control::wrench_from_torque(dynamics_, *published_);
   hardware_wrench_ = control::wrench_from_torque(dynamics_, hardware_estimate_);
 }

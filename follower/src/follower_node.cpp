@@ -334,6 +334,7 @@ void FollowerNode::fill_report(runtime::NodeReport& report) const {
   counter("stall_holds", static_cast<double>(stall_holds_));
   counter("robot_state_holds", static_cast<double>(robot_state_holds_));
   counter("robot_stale_cycles", static_cast<double>(robot_stale_cycles_));
+  hardware_->report_counters(report.counters);
   counter("liveliness_trips", static_cast<double>(liveliness_trips_));
   counter("watchdog_latency_max_ms", watchdog_latency_max_s_ * 1e3);
   counter("torque_saturations", static_cast<double>(limiter_.saturations()));

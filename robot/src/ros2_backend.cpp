@@ -65,6 +65,7 @@ std::shared_ptr<const Ros2HardwareSpec> parse_ros2_hardware(const ConfigNode& se
   config.command_topic = ros2.get_string("command_topic", "/forward_" + interface + "_controller/commands");
   config.state_topic = ros2.get_string("state_topic", config.state_topic);
   config.wrench_topic = ros2.get_string("wrench_topic", "");
+  config.wrench_frame = ros2.get_string("wrench_frame", "");
   for (const auto& [key, topic] : {std::pair{"command_topic", config.command_topic}, {"state_topic", config.state_topic}}) {
     if (!topic.starts_with('/')) throw ros2.error(key, "is a ROS 2 topic name: it starts with '/' (" + topic + ")");
   }

@@ -21,9 +21,12 @@ Ros2Hardware::~Ros2Hardware() {
 
 void Ros2Hardware::wait_for_robot() {
   const int64_t give_up_ns = monotonic_now_ns() + static_cast<int64_t>(config_.connect_timeout_s * 1e9);
+  const bool wants_wrench = !config_.wrench_topic.empty();
   bool have_state = false;
-  while (monotonic_now_ns() < give_up_ns && !(have_state && link_.command_readers() > 0)) {
-    have_state = have_state || link_.newest_state(state_);
+  bool have_wrench = false;
+  while (monotonic_now_ns() < give_up_ns && !(have_state && (have_wrench || !wants_wrench) && link_.command_readers() > 0)) {
+    have_state = link_.newest_state(state_) || have_state;
+    have_wrench = link_.newest_wrench(wrench_) || have_wrench;
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   const std::string waited = " within ros2.connect_timeout_s (" + std::to_string(config_.connect_timeout_s) +
@@ -32,6 +35,10 @@ void Ros2Hardware::wait_for_robot() {
     const std::string mismatch = link_.name_mismatch();
     if (!mismatch.empty()) throw std::runtime_error("the robot's " + config_.state_topic + " does not fit ros2.joints: " + mismatch);
     throw std::runtime_error("no sensor_msgs/JointState on " + config_.state_topic + waited);
+  }
+  if (wants_wrench && !have_wrench) {
+    throw std::runtime_error("no geometry_msgs/WrenchStamped on " + config_.wrench_topic + waited +
+                             (config_.wrench_frame.empty() ? "" : " in frame " + config_.wrench_frame));
   }
   if (link_.command_readers() == 0) {
     throw std::runtime_error("no controller subscribed to " + config_.command_topic + waited +
@@ -53,7 +60,10 @@ HardwareStatus Ros2Hardware::read(ArmState& state) {
                             static_cast<double>(now_ns - wrench_.arrival_ns) * 1e-9 <= config_.state_timeout_s;
   state.force_ext_n = wrench_fresh ? wrench_.force_n : std::array<double, 3>{};
   state.torque_ext_nm = wrench_fresh ? wrench_.torque_nm : std::array<double, 3>{};
-  const bool fresh = static_cast<double>(now_ns - state_.arrival_ns) * 1e-9 <= config_.state_timeout_s;
+  state.wrench_measured = wrench_fresh;
+  // a configured wrench is part of the state: without it the follower would see no load at all
+  const bool fresh = static_cast<double>(now_ns - state_.arrival_ns) * 1e-9 <= config_.state_timeout_s &&
+                     (config_.wrench_topic.empty() || wrench_fresh);
   return fresh ? HardwareStatus::kOk : HardwareStatus::kStale;
 }
 
@@ -78,6 +88,11 @@ HardwareStatus Ros2Hardware::hold() {
   // zero effort on the robot's gravity compensation, zero velocity, or the pose it was at
   const JointVector& command = config_.interface == Ros2CommandInterface::kPosition ? hold_q_rad_ : JointVector{};
   return link_.send(command) ? HardwareStatus::kOk : HardwareStatus::kFault;
+}
+
+void Ros2Hardware::report_counters(std::vector<std::pair<std::string, double>>& counters) const {
+  counters.emplace_back("robot_states_refused", static_cast<double>(link_.invalid_states()));
+  counters.emplace_back("robot_wrenches_refused", static_cast<double>(link_.invalid_wrenches()));
 }
 
 HardwareLimits Ros2Hardware::limits() const {

@@ -15,8 +15,9 @@ namespace teleop::robot {
 
 class Ros2Hardware final : public RobotHardware {
  public:
-  /// Joins the robot's domain and waits (up to connect_timeout_s) for its first valid state and for
-  /// its controller to subscribe; throws std::runtime_error naming the topic or the joints.
+  /// Joins the robot's domain and waits (up to connect_timeout_s) for its first valid state (and
+  /// wrench, when configured) and for its controller to subscribe; throws std::runtime_error naming
+  /// the topic or the joints.
   explicit Ros2Hardware(const Ros2HardwareConfig& config);
   ~Ros2Hardware() override;
 
@@ -28,9 +29,8 @@ class Ros2Hardware final : public RobotHardware {
   bool compensates_gravity() const override { return config_.gravity_compensated; }
   HardwareLimits limits() const override;
   const char* name() const override { return name_.c_str(); }
-
-  /// States refused since the start (names, array sizes, non-finite values).
-  uint64_t invalid_states() const { return link_.invalid_states(); }
+  /// The states and wrenches the link refused (names, array sizes, frames, non-finite values).
+  void report_counters(std::vector<std::pair<std::string, double>>& counters) const override;
 
  private:
   void wait_for_robot();

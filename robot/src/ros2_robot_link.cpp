@@ -158,12 +158,20 @@ void Ros2RobotLink::on_state(const void* sample) {
 }
 
 void Ros2RobotLink::on_wrench(const void* sample) {
-  const auto& w = static_cast<const WrenchMsg*>(sample)->wrench_();
+  const auto& stamped = *static_cast<const WrenchMsg*>(sample);
+  if (!config_.wrench_frame.empty() && stamped.header_().frame_id_() != config_.wrench_frame) {
+    invalid_wrenches_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  const auto& w = stamped.wrench_();
   RobotWrenchRecord record{{w.force_().x_(), w.force_().y_(), w.force_().z_()},
                            {w.torque_().x_(), w.torque_().y_(), w.torque_().z_()},
                            monotonic_now_ns()};
   for (size_t i = 0; i < 3; ++i) {
-    if (!std::isfinite(record.force_n[i]) || !std::isfinite(record.torque_nm[i])) return;
+    if (!std::isfinite(record.force_n[i]) || !std::isfinite(record.torque_nm[i])) {
+      invalid_wrenches_.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
   }
   wrenches_.push(record);
 }

@@ -54,6 +54,8 @@ class Ros2RobotLink {
   int command_readers() const;
   /// States refused: joints missing, unexpected or repeated, arrays too short, values not finite.
   uint64_t invalid_states() const { return invalid_states_.load(std::memory_order_relaxed); }
+  /// Wrenches refused: another frame than ros2.wrench_frame, values not finite.
+  uint64_t invalid_wrenches() const { return invalid_wrenches_.load(std::memory_order_relaxed); }
   /// Why the first state refused for its names was refused (setup time; "" if none was).
   std::string name_mismatch() const;
 
@@ -72,6 +74,7 @@ class Ros2RobotLink {
   transport::Participant participant_;
   std::unique_ptr<Endpoints> dds_;
   std::atomic<uint64_t> invalid_states_{0};
+  std::atomic<uint64_t> invalid_wrenches_{0};
   mutable std::mutex mismatch_mutex_;
   std::string mismatch_;
 };

@@ -1,7 +1,9 @@
 // teleop_ros2_standin_robot: a ROS 2 robot for the tests, on another DDS. Cyclone DDS (the DDS of
 // rmw_cyclonedds, through its C API and idlc's types of the IDL rosidl makes of common_interfaces)
 // carries what ros2_control would: a forward_command_controller's std_msgs/Float64MultiArray in,
-// joint_state_broadcaster's sensor_msgs/JointState out at 1 kHz. A MuJoCo arm is the robot's
+// joint_state_broadcaster's sensor_msgs/JointState out at 1 kHz, and (--wrench-topic) the contact
+// wrench at the flange in the base frame as a geometry_msgs/WrenchStamped, as a Franka's broadcaster
+// publishes its estimate. A MuJoCo arm is the robot's
 // physics, gravity-compensated as a Franka is; an effort command is its torque, a position or
 // velocity command is tracked by the robot's own joint PD. Like a lab's robot configured as
 // docs/robots.md asks, it holds its pose when commands stop for --command-timeout-ms.
@@ -19,11 +21,13 @@
 #include <csignal>
 #include <cstdio>
 #include <ctime>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "std_msgs/msg/Float64MultiArray_.h"
+#include "geometry_msgs/msg/WrenchStamped_.h"
 #include "sensor_msgs/msg/JointState_.h"
+#include "std_msgs/msg/Float64MultiArray_.h"
 #include "teleop/common/clock.h"
 #include "teleop/robot/mujoco_hardware.h"
 
@@ -45,6 +49,7 @@ struct Options {
   int domain = 0;
   std::string command_topic;
   std::string state_topic = "/joint_states";
+  std::string wrench_topic;
   double command_timeout_ms = 100;
   double pause_at_s = -1;  // after the first command
   double pause_ms = 0;
@@ -107,6 +112,24 @@ class StateWriter {
   std::vector<double> values_;
   char frame_[1] = {};
   sensor_msgs_msg_dds__JointState_ sample_{};
+};
+
+// the MuJoCo contact wrench at the flange, base frame "fr3_link0"
+class WrenchWriter {
+ public:
+  explicit WrenchWriter(dds_entity_t writer) : writer_(writer) { sample_.header_.frame_id_ = frame_; }
+  void write(const teleop::robot::ArmState& s) {
+    const auto& f = s.force_ext_n;
+    const auto& t = s.torque_ext_nm;
+    sample_.wrench_.force_ = {f[0], f[1], f[2]};
+    sample_.wrench_.torque_ = {t[0], t[1], t[2]};
+    dds_write(writer_, &sample_);
+  }
+
+ private:
+  dds_entity_t writer_;
+  char frame_[10] = "fr3_link0";
+  geometry_msgs_msg_dds__WrenchStamped_ sample_{};
 };
 
 // the newest command, and when it came
@@ -183,6 +206,12 @@ int run(const Options& o) {
                                                       ("rt" + o.command_topic).c_str(), nullptr, nullptr);
   StateWriter states(dds_create_writer(participant, state_topic, qos, nullptr), published_names(o), n, o.shuffle);
   CommandIntake commands{dds_create_reader(participant, command_topic, qos, nullptr)};
+  std::optional<WrenchWriter> wrenches;
+  if (!o.wrench_topic.empty()) {
+    const dds_entity_t topic = dds_create_topic(participant, &geometry_msgs_msg_dds__WrenchStamped__desc,
+                                                ("rt" + o.wrench_topic).c_str(), nullptr, nullptr);
+    wrenches.emplace(dds_create_writer(participant, topic, qos, nullptr));
+  }
   dds_delete_qos(qos);
 
   teleop::robot::ArmState s;
@@ -241,6 +270,7 @@ int run(const Options& o) {
       std::fflush(stdout);
     }
     if (!paused) states.write(s);
+    if (!paused && wrenches) wrenches->write(s);
   }
   std::printf("standin: commands %llu, wrong size %llu, timeouts %llu\n", static_cast<unsigned long long>(commands.received),
               static_cast<unsigned long long>(commands.wrong_size), static_cast<unsigned long long>(timeouts));
@@ -263,6 +293,7 @@ int main(int argc, char** argv) {
   app.add_option("--domain", o.domain, "the DDS domain")->required();
   app.add_option("--command-topic", o.command_topic, "the controller's command topic (default by --interface)");
   app.add_option("--state-topic", o.state_topic, "the joint state topic");
+  app.add_option("--wrench-topic", o.wrench_topic, "publish the flange's contact wrench here");
   app.add_option("--command-timeout-ms", o.command_timeout_ms, "hold the pose when commands stop this long");
   app.add_option("--pause-at-s", o.pause_at_s, "stop publishing the state this long after the first command");
   app.add_option("--pause-ms", o.pause_ms, "for this long");

@@ -4,6 +4,9 @@
 // Franka interface), and says so.
 
 #include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "teleop/common/joint_model.h"
 
@@ -21,6 +24,9 @@ struct ArmState {
   /// External force and torque at the end effector, base frame [N, N*m].
   std::array<double, 3> force_ext_n{};
   std::array<double, 3> torque_ext_nm{};
+  /// The robot measured that wrench itself (a force-torque sensor, its own estimate), in the base
+  /// frame: the follower's `hardware` estimate is then its joint torques (J^T w), not tau_ext_nm.
+  bool wrench_measured = false;
 };
 
 enum class HardwareStatus {
@@ -64,6 +70,8 @@ class RobotHardware {
   /// does): the follower then sends its controller's torque minus its own g(q).
   virtual bool compensates_gravity() const = 0;
   virtual HardwareLimits limits() const = 0;
+  /// Adds the robot's own counters (samples it refused) to the follower's report. After the loop.
+  virtual void report_counters(std::vector<std::pair<std::string, double>>& counters) const { (void)counters; }
   /// A name for logs and reports ("simple", "mujoco:scene_wall.xml").
   virtual const char* name() const = 0;
 };

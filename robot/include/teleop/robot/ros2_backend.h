@@ -30,8 +30,11 @@ struct Ros2HardwareConfig {
   /// ROS 2 topic names (`/forward_effort_controller/commands`; DDS: rt/...).
   std::string command_topic;
   std::string state_topic = "/joint_states";
-  /// A measured external wrench (geometry_msgs/WrenchStamped, base frame); "" when the robot has none.
+  /// A measured external wrench (geometry_msgs/WrenchStamped, in the robot's base frame, the wrench
+  /// the environment exerts on the end effector); "" when the robot has none.
   std::string wrench_topic;
+  /// The base frame's name: a wrench stamped with another frame_id is refused ("": not checked).
+  std::string wrench_frame;
   /// The robot's DDS domain (`ros2.transport`, the keys of a node's `transport:` but impairment):
   /// by default its ROS_DOMAIN_ID 0, multicast discovery, UDP.
   transport::ParticipantConfig participant = default_participant();
