@@ -49,6 +49,8 @@ TEST(TwinLockstep, TwoRunsGiveBitIdenticalTrajectories) {
 }
 
 TEST(TwinLockstep, ReportsAStalledControllerWithinTheTimeout) {
+  // the controller answers this many steps, then goes silent
+  constexpr unsigned kSteps = 6000;
   const std::string dir = make_temp_dir();
   const std::string config =
       config_copy(dir, "twin_lockstep.yaml", {{"timeout_ms: 500", "timeout_ms: 300"}, {"steps: 2000", "steps: 0"}});
@@ -75,26 +77,28 @@ TEST(TwinLockstep, ReportsAStalledControllerWithinTheTimeout) {
                                               }
                                             }));
   RunningProcess controller(
-      {bin("teleop_lockstep_controller"), "--domain", std::to_string(domain), "--stall-after", "3000", "--idle-timeout", "15"});
-  // 3000 steps take 1-2 s once matched; 10 s leave room for a slow start on a loaded host (the
-  // run that ended with 0 steps was the lock-step link's missed first state, now repeated)
+      {bin("teleop_lockstep_controller"), "--domain", std::to_string(domain), "--stall-after", std::to_string(kSteps),
+       "--idle-timeout", "25"});
+  // 6000 steps take 2-4 s once matched, time for this observer to match the twin first (under ASan
+  // 3000 were done before it had: no state seen); 20 s leave room for a slow start on a loaded host
+  // (the run that ended with 0 steps was the lock-step link's missed first state, now repeated)
   const ProcessResult twin = run_process({bin("teleop_twin"), "-c", config, "--domain", std::to_string(domain), "-d",
-                                          "10", "-r", dir + "/twin.yaml"},
-                                         std::chrono::seconds(30));
+                                          "20", "-r", dir + "/twin.yaml"},
+                                         std::chrono::seconds(45));
   EXPECT_EQ(twin.exit_status, 0) << "the twin ends its run, it does not hang: " << twin.output;
   controller.stop(SIGTERM, std::chrono::seconds(10));
   const std::lock_guard lock(mutex);
   const runtime::NodeReport report = runtime::read_report(dir + "/twin.yaml");
-  EXPECT_EQ(counter(report, "lockstep_steps"), 3000);
+  EXPECT_EQ(counter(report, "lockstep_steps"), kSteps);
   EXPECT_EQ(counter(report, "lockstep_stalls"), 1);
   EXPECT_EQ(report.final_state, "safe_hold");
   // the controller goes silent late enough (0.3-1 s into the run) for this observer to have matched
   ASSERT_FALSE(states.empty());
   ASSERT_GT(safe_hold_ns, 0) << "the stall was reported in NodeStatus";
-  // the unanswered state is step 3001; its stall is reported after the 300 ms timeout, with the
+  // the unanswered state is step kSteps + 1; its stall is reported after the 300 ms timeout, with the
   // next status (10 Hz); the upper bound only catches a hang, it is not a latency claim
   const double reported_after_s = static_cast<double>(safe_hold_ns - states.back().first) * 1e-9;
-  EXPECT_EQ(states.back().second, 3001u);
+  EXPECT_EQ(states.back().second, kSteps + 1u);
   EXPECT_GE(reported_after_s, 0.25);
   EXPECT_LT(reported_after_s, 1.5);
 }
