@@ -35,6 +35,40 @@ void check_names(const ConfigNode& ros2, const Ros2HardwareConfig& config) {
   }
 }
 
+// the joints by name, those ignored, and what the robot can do per joint
+void parse_joints(const ConfigNode& ros2, Ros2HardwareConfig& config) {
+  config.joints = ros2.get_string_list("joints");
+  if (config.joints.empty()) throw ros2.error("joints", "is required: the robot's joint names in the follower's order");
+  if (config.joints.size() > kMaxJoints) throw ros2.error("joints", "names more than " + std::to_string(kMaxJoints) + " joints");
+  config.ignored_joints = ros2.get_string_list("ignored_joints");
+  check_names(ros2, config);
+  const size_t n = config.joints.size();
+  config.q_min_rad = joint_list(ros2, "q_min_rad", n, {-1e3, 1e3});
+  config.q_max_rad = joint_list(ros2, "q_max_rad", n, {-1e3, 1e3});
+  config.max_torque_nm = joint_list(ros2, "max_torque_nm", n, {1e-6, 1e6});
+}
+
+// a ROS 2 topic name of the section, checked; "" only where there is none by default (optional)
+std::string topic(const ConfigNode& ros2, const std::string& key, const std::string& fallback) {
+  const std::string name = ros2.get_string(key, fallback);
+  if (name.empty() ? !fallback.empty() : !name.starts_with('/')) {
+    throw ros2.error(key, "is a ROS 2 topic name: it starts with '/' (" + name + ")");
+  }
+  return name;
+}
+
+// the command interface and the topics, named by default as ros2_control's examples name them
+void parse_topics(const ConfigNode& ros2, Ros2HardwareConfig& config) {
+  const std::string interface = ros2.get_choice("interface", {"effort", "position", "velocity"}, "effort");
+  for (auto candidate : {Ros2CommandInterface::kEffort, Ros2CommandInterface::kPosition, Ros2CommandInterface::kVelocity}) {
+    if (interface == interface_name(candidate)) config.interface = candidate;
+  }
+  config.command_topic = topic(ros2, "command_topic", "/forward_" + interface + "_controller/commands");
+  config.state_topic = topic(ros2, "state_topic", config.state_topic);
+  config.wrench_topic = topic(ros2, "wrench_topic", "");
+  config.wrench_frame = ros2.get_string("wrench_frame", "");
+}
+
 }  // namespace
 
 transport::ParticipantConfig Ros2HardwareConfig::default_participant() {
@@ -52,26 +86,8 @@ std::unique_ptr<RobotHardware> Ros2HardwareSpec::make(double period_s) const {
 std::shared_ptr<const Ros2HardwareSpec> parse_ros2_hardware(const ConfigNode& section) {
   const ConfigNode ros2 = section.child("ros2");
   Ros2HardwareConfig config;
-  config.joints = ros2.get_string_list("joints");
-  if (config.joints.empty()) throw ros2.error("joints", "is required: the robot's joint names in the follower's order");
-  if (config.joints.size() > kMaxJoints) throw ros2.error("joints", "names more than " + std::to_string(kMaxJoints) + " joints");
-  config.ignored_joints = ros2.get_string_list("ignored_joints");
-  check_names(ros2, config);
-  const std::string interface = ros2.get_choice("interface", {"effort", "position", "velocity"}, "effort");
-  for (auto candidate : {Ros2CommandInterface::kEffort, Ros2CommandInterface::kPosition, Ros2CommandInterface::kVelocity}) {
-    if (interface == interface_name(candidate)) config.interface = candidate;
-  }
-  // ros2_control_demos name a forward_command_controller by its interface
-  config.command_topic = ros2.get_string("command_topic", "/forward_" + interface + "_controller/commands");
-  config.state_topic = ros2.get_string("state_topic", config.state_topic);
-  config.wrench_topic = ros2.get_string("wrench_topic", "");
-  config.wrench_frame = ros2.get_string("wrench_frame", "");
-  for (const auto& [key, topic] : {std::pair{"command_topic", config.command_topic}, {"state_topic", config.state_topic}}) {
-    if (!topic.starts_with('/')) throw ros2.error(key, "is a ROS 2 topic name: it starts with '/' (" + topic + ")");
-  }
-  if (!config.wrench_topic.empty() && !config.wrench_topic.starts_with('/')) {
-    throw ros2.error("wrench_topic", "is a ROS 2 topic name: it starts with '/' (" + config.wrench_topic + ")");
-  }
+  parse_joints(ros2, config);
+  parse_topics(ros2, config);
   if (const auto bus = ros2.optional_child("transport")) {
     config.participant = transport::parse_participant_config(*bus, config.participant.name);
     if (config.participant.impairment.enabled()) throw bus->error("impairment", "the robot's own bus is not impaired");
@@ -82,10 +98,6 @@ std::shared_ptr<const Ros2HardwareSpec> parse_ros2_hardware(const ConfigNode& se
   if (config.interface == Ros2CommandInterface::kEffort && !config.gravity_compensated) {
     throw ros2.error("gravity_compensated", "must be true for interface: effort (the follower holds it with zero effort)");
   }
-  const size_t n = config.joints.size();
-  config.q_min_rad = joint_list(ros2, "q_min_rad", n, {-1e3, 1e3});
-  config.q_max_rad = joint_list(ros2, "q_max_rad", n, {-1e3, 1e3});
-  config.max_torque_nm = joint_list(ros2, "max_torque_nm", n, {1e-6, 1e6});
   return std::make_shared<const Ros2HardwareSpec>(config);
 }
 
