@@ -82,9 +82,9 @@ void DiscoveryListener::on_participant_discovery(eprosima::fastdds::dds::DomainP
       engine_->peers().add(name, locators);
     }
   }
-  if (info.status == ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT &&
-      has_new_participant_.load(std::memory_order_acquire)) {
-    new_participant_();
+  if (info.status == ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT) {
+    const std::lock_guard lock(new_participant_mutex_);
+    if (new_participant_) new_participant_();
   }
   if (!gone && !own_name_.empty() && name == own_name_ && p != nullptr && info.info.m_guid.guidPrefix != p->guid().guidPrefix &&
       info.status == ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT) {

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <mutex>
 
 #include "teleop/transport/discovery_observer.h"
 #include "teleop/transport/impairment/impairment_engine.h"
@@ -25,11 +26,11 @@ class DiscoveryListener : public eprosima::fastdds::dds::DomainParticipantListen
 
   void on_participant_discovery(eprosima::fastdds::dds::DomainParticipant*,
                                 eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override;
-  /// Called (on Fast DDS's thread) whenever another participant appears; set once, before or
-  /// after the participant exists.
+  /// Called (on Fast DDS's thread) whenever another participant appears. Set to nullptr before
+  /// what the callback touches goes: it returns once no call runs, and none comes after.
   void on_new_participant(std::function<void()> callback) {
+    const std::lock_guard lock(new_participant_mutex_);
     new_participant_ = std::move(callback);
-    has_new_participant_.store(true, std::memory_order_release);
   }
   void on_publisher_discovery(eprosima::fastdds::dds::DomainParticipant*,
                               eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override;
@@ -47,7 +48,9 @@ class DiscoveryListener : public eprosima::fastdds::dds::DomainParticipantListen
   Naming naming_;
   std::string own_name_;
   std::function<void()> new_participant_;
-  std::atomic<bool> has_new_participant_{false};
+  // held while the callback runs: ASan saw a discovery kick the booster the participant had
+  // just destroyed
+  std::mutex new_participant_mutex_;
 };
 
 /// The property a participant announces its host name in.

@@ -213,7 +213,9 @@ void Participant::create_entities(const dds::DomainParticipantQos& qos, const Qo
 }
 
 Participant::~Participant() {
-  // nothing re-announces the endpoints while they are deleted
+  // nothing re-announces the endpoints while they are deleted, and no discovery kicks the booster
+  // once it is gone (the listener lives on with the participant)
+  discovery_listener_->on_new_participant(nullptr);
   discovery_booster_.reset();
   // the delay line sends through resources the participant owns: stop it first
   if (impairment_) impairment_->shutdown();
