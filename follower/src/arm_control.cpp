@@ -24,6 +24,7 @@ ArmControl::ArmControl(const ArmControlConfig& config, double cycle_s)
       cartesian_(dynamics_, {}),
       position_pd_(config.position_pd),
       switch_(cycle_s, config.blend_s),
+      cycle_s_(cycle_s),
       observer_(dynamics_, cycle_s, control::JointVector::Constant(config.observer_gain_per_s)),
       // the same bandwidth as the observer, so the two differ by method, not by filtering
       direct_(dynamics_, cycle_s, std::min(1.0, cycle_s * config.observer_gain_per_s)) {
@@ -74,11 +75,19 @@ const control::JointVector& ArmControl::compute(const robot::ArmState& arm, cons
   return tau_;
 }
 
+double ArmControl::measurement_interval(const robot::ArmState& arm) {
+  const int64_t last_ns = last_measured_ns_;
+  last_measured_ns_ = arm.measured_ns;
+  if (arm.measured_ns == 0 || last_ns == 0) return cycle_s_;
+  return static_cast<double>(arm.measured_ns - last_ns) * 1e-9;
+}
+
 void ArmControl::estimate(const robot::ArmState& arm) {
   load_state(arm);
   const control::JointVector applied = first_joints(arm.tau_measured_nm);
-  observer_.update(state_, applied);
-  direct_.update(state_, applied);
+  const double interval_s = measurement_interval(arm);
+  observer_.update(state_, applied, interval_s);
+  direct_.update(state_, applied, interval_s);
   dynamics_.update(state_);
   if (arm.wrench_measured) {
     // a wrench measured at the end effector, as the joint torques it makes

@@ -56,6 +56,7 @@ HardwareStatus Ros2Hardware::read(ArmState& state) {
   state.dq_radps = state_.dq_radps;
   state.tau_measured_nm = state_.tau_nm;
   state.tau_ext_nm = JointVector{};  // a JointState carries none: the follower's observer estimates it
+  state.measured_ns = state_.stamp_ns;
   const bool wrench_fresh = !config_.wrench_topic.empty() &&
                             static_cast<double>(now_ns - wrench_.arrival_ns) * 1e-9 <= config_.state_timeout_s;
   state.force_ext_n = wrench_fresh ? wrench_.force_n : std::array<double, 3>{};

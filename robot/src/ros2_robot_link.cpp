@@ -154,6 +154,7 @@ void Ros2RobotLink::on_state(const void* sample) {
     record.tau_nm[i] = s.effort_().empty() ? 0.0 : s.effort_()[k];
   }
   record.arrival_ns = monotonic_now_ns();
+  record.stamp_ns = int64_t{s.header_().stamp_().sec_()} * 1'000'000'000 + s.header_().stamp_().nanosec_();
   states_.push(record);
 }
 

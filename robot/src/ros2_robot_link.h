@@ -20,12 +20,14 @@
 
 namespace teleop::robot {
 
-/// One JointState, in the follower's joint order, stamped with its arrival (monotonic).
+/// One JointState, in the follower's joint order, stamped with its arrival (monotonic) and the
+/// robot's header stamp.
 struct RobotStateRecord {
   JointVector q_rad{};
   JointVector dq_radps{};
   JointVector tau_nm{};
   int64_t arrival_ns = 0;
+  int64_t stamp_ns = 0;
 };
 
 /// One WrenchStamped, stamped with its arrival (monotonic).

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <random>
 
 #include "allocation_counter.h"
 #include "control_test_util.h"
@@ -64,11 +65,16 @@ struct MotionErrors {
   double truth_rms;
 };
 
+// How the estimators get the state: every cycle, or (a robot on a network) on about half of the
+// cycles at random, the rest seeing the last state again: with the interval since the last
+// measurement, or as if each were a cycle after the last (what the observer did before it knew).
+enum class Delivery { kEveryCycle, kIrregularWithInterval, kIrregularAsCycles };
+
 // Sinusoidal joint trajectory under joint impedance, constant force at the flange site. The
 // estimators see `quantum`-quantised joint positions (0: exact state) and, then, velocities by
 // backward differences of them (PARTI §3.2.2: dq computed numerically). RMS of the error of
 // tau_ext over all joints, 0.5 s to 3 s.
-MotionErrors run_motion(double quantum) {
+MotionErrors run_motion(double quantum, Delivery delivery = Delivery::kEveryCycle) {
   auto sim = panda();
   const mjModel* m = sim.model();
   mjData* d = sim.data();
@@ -101,6 +107,10 @@ MotionErrors run_motion(double quantum) {
   ArmCommand cmd;
   double obs_sq = 0, dir_sq = 0, truth_sq = 0;
   int n = 0;
+  std::minstd_rand network(7);
+  ArmState seen = meas;
+  JointVector seen_applied = JointVector::Zero();
+  int last_seen = 0;
   const double w = 2 * kPi * 0.5;
   for (int k = 0; k < 3000; ++k) {
     const double t = k * h;
@@ -121,8 +131,22 @@ MotionErrors run_motion(double quantum) {
       return ji.compute(s, cmd);
     });
     meas = measure(state_of(d), meas.q);
-    observer.update(meas, applied);
-    direct.update(meas, applied);
+    if (delivery == Delivery::kEveryCycle) {
+      observer.update(meas, applied);
+      direct.update(meas, applied);
+    } else {
+      const bool arrived = network() % 2 == 0;
+      double interval_s = 0.0;
+      if (arrived) {
+        seen = meas;
+        seen_applied = applied;  // the torque the state reports with it
+        interval_s = (k + 1 - last_seen) * h;
+        last_seen = k + 1;
+      }
+      if (delivery == Delivery::kIrregularAsCycles) interval_s = h;
+      observer.update(seen, seen_applied, interval_s);
+      direct.update(seen, seen_applied, interval_s);
+    }
     if (t >= 0.5) {
       obs_sq += (observer.external_torque() - truth).squaredNorm();
       dir_sq += (direct.external_torque() - truth).squaredNorm();
@@ -148,6 +172,47 @@ TEST(MomentumObserver, HasSmallerErrorThanTheDirectEstimatorDuringMotion) {
   // Encoder: with the same first-order bandwidth (gamma = h k_O) the quantisation noise of dq
   // dominates both about equally (measured, not a claim of the observer's superiority).
   EXPECT_LT(encoder.observer_rms, 1.1 * encoder.direct_rms);
+}
+
+TEST(MomentumObserver, EstimatesFromStatesThatArriveOnHalfTheCyclesByTheirInterval) {
+  const MotionErrors every = run_motion(0);
+  const MotionErrors interval = run_motion(0, Delivery::kIrregularWithInterval);
+  const MotionErrors as_cycles = run_motion(0, Delivery::kIrregularAsCycles);
+  std::printf(
+      "external torque, states on about half of the cycles (RMS of tau_ext %.3f Nm):\n"
+      "  every cycle:                 observer RMS error %.4f Nm\n"
+      "  by the measurement interval: observer RMS error %.4f Nm, direct %.4f Nm\n"
+      "  as if each a cycle apart:    observer RMS error %.4f Nm, direct %.4f Nm\n",
+      every.truth_rms, every.observer_rms, interval.observer_rms, interval.direct_rms, as_cycles.observer_rms,
+      as_cycles.direct_rms);
+  // the momentum balance over the interval loses nothing (measured 0.0159 against 0.0160 Nm); a
+  // repeated state taken for a new one makes the estimate jump (0.128 Nm)
+  EXPECT_LT(interval.observer_rms, 1.2 * every.observer_rms);
+  EXPECT_LT(interval.observer_rms, 0.25 * as_cycles.observer_rms);
+  EXPECT_LT(interval.direct_rms, 0.5 * as_cycles.direct_rms);
+}
+
+TEST(MomentumObserver, BridgesAGapLongerThanItsTimeConstantWithoutRinging) {
+  auto sim = panda();
+  const mjModel* m = sim.model();
+  mjData* d = sim.data();
+  ArmDynamics dyn(m, "ee_site");
+  MomentumObserver observer(dyn, m->opt.timestep, JointVector::Constant(kObserverGain));
+  const ArmState rest = state_of(d);
+  observer.update(rest, JointVector::Zero());
+  // 5 Nm beyond gravity that the state does not show: the estimate is its opposite, reached at
+  // the rate h K_O
+  dyn.update(rest);
+  const JointVector unseen = dyn.bias() + JointVector::Constant(5.0);
+  const JointVector after_a_cycle = observer.update(rest, unseen, m->opt.timestep);
+  for (int i = 0; i < kDof; ++i) EXPECT_NEAR(after_a_cycle[i], -kObserverGain * m->opt.timestep * 5.0, 1e-6);
+  // the same measurement again changes nothing
+  EXPECT_EQ(observer.update(rest, unseen, 0.0), after_a_cycle);
+  // 30 ms at K_O = 100/s (h K_O = 3; the plain recursion would overshoot to +5): the interval's mean
+  const JointVector after_a_gap = observer.update(rest, unseen, 0.03);
+  for (int i = 0; i < kDof; ++i) EXPECT_NEAR(after_a_gap[i], -5.0, 1e-6);
+  // a robot clock that went back starts the estimate afresh
+  EXPECT_EQ(observer.update(rest, unseen, -0.001), JointVector::Zero());
 }
 
 // g(q) by MuJoCo itself (qfrc_bias at dq = 0), apart from ArmDynamics

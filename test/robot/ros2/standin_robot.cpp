@@ -89,7 +89,8 @@ class StateWriter {
     sample_.effort_ = seq(2);
     sample_.header_.frame_id_ = frame_;
   }
-  void write(const teleop::robot::ArmState& s) {
+  // `stamp_ns`: when the state was measured, on the robot's clock
+  void write(const teleop::robot::ArmState& s, int64_t stamp_ns) {
     const size_t n = names_.size();
     for (size_t i = 0; i < joints_; ++i) {
       // configured joint i sits at i, or (shuffled) behind the gripper in reverse
@@ -98,8 +99,7 @@ class StateWriter {
       values_[n + k] = s.dq_radps[i];
       values_[2 * n + k] = s.tau_measured_nm[i];
     }
-    const int64_t now = teleop::system_now_ns();
-    sample_.header_.stamp_ = {static_cast<int32_t>(now / 1'000'000'000), static_cast<uint32_t>(now % 1'000'000'000)};
+    sample_.header_.stamp_ = {static_cast<int32_t>(stamp_ns / 1'000'000'000), static_cast<uint32_t>(stamp_ns % 1'000'000'000)};
     dds_write(writer_, &sample_);
   }
 
@@ -223,6 +223,8 @@ int run(const Options& o) {
   int64_t first_command_ns = 0;
   bool pause_reported = false;
   const int64_t start_ns = teleop::monotonic_now_ns();
+  // the robot's clock is its simulation's: a cycle the host ran late still measured 1 ms later
+  const int64_t epoch_ns = teleop::system_now_ns();
   timespec next{};
   clock_gettime(CLOCK_MONOTONIC, &next);
   std::printf("standin: %s robot of %zu joints on domain %d, commands on %s\n", o.interface.c_str(), n, o.domain,
@@ -269,7 +271,7 @@ int run(const Options& o) {
       std::printf("standin: state paused for %.0f ms\n", o.pause_ms);
       std::fflush(stdout);
     }
-    if (!paused) states.write(s);
+    if (!paused) states.write(s, epoch_ns + (cycle + 1) * 1'000'000);
     if (!paused && wrenches) wrenches->write(s);
   }
   std::printf("standin: commands %llu, wrong size %llu, timeouts %llu\n", static_cast<unsigned long long>(commands.received),

@@ -25,6 +25,12 @@ namespace teleop::control {
 /// Euler integrator (MuJoCo's, M_{k-1}(dq_k - dq_{k-1}) = h (tau + tau_ext - n_{k-1})) this makes
 /// the momentum balance exact: r_k = r_{k-1} + h K_O (tau_ext - r_{k-1}); stable for h k_O < 2.
 /// Whatever the model lacks (e.g. joint friction) shows up in r as external torque.
+///
+/// A robot on a network does not deliver one state per cycle: some cycles see none, the next one
+/// the state of two cycles later. update() then takes the interval between the two measurements
+/// (the robot's own stamps) as h, and the same measurement again changes nothing. Where h k_O > 1
+/// (a gap of 10 ms at K_O = 100/s; the recursion would overshoot, and diverge past 2) r is the
+/// interval's mean external torque, M_{k-1} (dq_k - dq_{k-1}) / h - (tau_{k-1} - n_{k-1}).
 class MomentumObserver {
  public:
   /// `gain` is K_O's diagonal [1/s].
@@ -35,10 +41,17 @@ class MomentumObserver {
 
   /// `tau_applied`: the joint torque that acted over the last cycle (measured or commanded,
   /// link side). Returns r = the estimate of tau_ext.
-  const JointVector& update(const ArmState& state, const JointVector& tau_applied);
+  const JointVector& update(const ArmState& state, const JointVector& tau_applied) {
+    return update(state, tau_applied, h_);
+  }
+  /// The same with the measurement `interval_s` after the last one (0: the same measurement).
+  const JointVector& update(const ArmState& state, const JointVector& tau_applied, double interval_s);
   const JointVector& external_torque() const { return r_; }
 
  private:
+  // where h k_O > 1: r is the interval's mean external torque
+  void bridge_gap(const JointVector& p, const JointVector& dq, const JointVector& tau_applied, double interval_s);
+
   ArmDynamics* dyn_;
   double h_;
   JointVector gain_;
@@ -46,6 +59,7 @@ class MomentumObserver {
   JointVector p0_ = JointVector::Zero();
   JointVector integral_ = JointVector::Zero();
   JointVector r_ = JointVector::Zero();
+  JointVector dq_prev_ = JointVector::Zero();
   JointMatrix mass_prev_ = JointMatrix::Zero();
   JointVector bias_prev_ = JointVector::Zero();
 };
@@ -60,7 +74,11 @@ class DirectEstimator {
  public:
   DirectEstimator(ArmDynamics& dynamics, double cycle_s, double gamma);
   void reset() { started_ = false; }
-  const JointVector& update(const ArmState& state, const JointVector& tau_applied);
+  const JointVector& update(const ArmState& state, const JointVector& tau_applied) {
+    return update(state, tau_applied, h_);
+  }
+  /// ddq over the measurement `interval_s` after the last one (0: the same measurement, no update).
+  const JointVector& update(const ArmState& state, const JointVector& tau_applied, double interval_s);
   const JointVector& external_torque() const { return estimate_; }
 
  private:

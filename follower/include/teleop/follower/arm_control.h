@@ -68,6 +68,9 @@ class ArmControl {
 
  private:
   void load_state(const robot::ArmState& arm);
+  /// The time since the last measurement the estimators saw [s]: the robot's stamps apart, or a
+  /// cycle where it gives none; 0 for the same measurement again.
+  double measurement_interval(const robot::ArmState& arm);
   void load_command(const ValidCommand& command);
 
   ArmControlConfig config_;
@@ -78,6 +81,8 @@ class ArmControl {
   control::CartesianImpedance cartesian_;
   control::PositionPd position_pd_;
   control::ControllerSwitch switch_;
+  double cycle_s_;
+  int64_t last_measured_ns_ = 0;
   control::MomentumObserver observer_;
   control::DirectEstimator direct_;
   control::JointVector hardware_estimate_ = control::JointVector::Zero();

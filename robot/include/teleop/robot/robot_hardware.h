@@ -27,6 +27,9 @@ struct ArmState {
   /// The robot measured that wrench itself (a force-torque sensor, its own estimate), in the base
   /// frame: the follower's `hardware` estimate is then its joint torques (J^T w), not tau_ext_nm.
   bool wrench_measured = false;
+  /// When the robot measured this state, on its own clock [ns] (a ROS 2 robot's header stamp);
+  /// 0 where it does not say: then each read is one cycle after the last.
+  int64_t measured_ns = 0;
 };
 
 enum class HardwareStatus {
