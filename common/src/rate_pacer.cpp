@@ -1,5 +1,6 @@
 #include "teleop/common/rate_pacer.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace teleop {
@@ -36,6 +37,14 @@ CycleTick RatePacer::wait_next() {
   ++stats_.cycles;
   next_deadline_ns_ += period_ns_;
   return tick;
+}
+
+void RatePacer::steer_phase(int64_t phase_ns, int64_t max_step_ns) {
+  // the phase error in [-period/2, period/2): how far the next deadline lies after the wanted phase
+  int64_t error = (next_deadline_ns_ - phase_ns) % period_ns_;
+  if (error < 0) error += period_ns_;
+  if (error >= period_ns_ / 2) error -= period_ns_;
+  next_deadline_ns_ -= std::clamp(error / 8, -max_step_ns, max_step_ns);
 }
 
 }  // namespace teleop

@@ -94,6 +94,8 @@ std::shared_ptr<const Ros2HardwareSpec> parse_ros2_hardware(const ConfigNode& se
   }
   config.state_timeout_s = ros2.get_double("state_timeout_ms", {0.5, 1000}, config.state_timeout_s * 1e3) * 1e-3;
   config.connect_timeout_s = ros2.get_double("connect_timeout_s", {0.1, 600}, config.connect_timeout_s);
+  config.phase_lock = ros2.get_bool("phase_lock", config.phase_lock);
+  config.phase_lock_lead_s = ros2.get_double("phase_lock_lead_us", {0, 900}, config.phase_lock_lead_s * 1e6) * 1e-6;
   config.gravity_compensated = ros2.get_bool("gravity_compensated", true);
   if (config.interface == Ros2CommandInterface::kEffort && !config.gravity_compensated) {
     throw ros2.error("gravity_compensated", "must be true for interface: effort (the follower holds it with zero effort)");

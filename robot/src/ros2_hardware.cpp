@@ -91,6 +91,11 @@ HardwareStatus Ros2Hardware::hold() {
   return link_.send(command) ? HardwareStatus::kOk : HardwareStatus::kFault;
 }
 
+int64_t Ros2Hardware::cycle_phase_ns() const {
+  if (!config_.phase_lock || state_.arrival_ns == 0) return 0;
+  return state_.arrival_ns + static_cast<int64_t>(config_.phase_lock_lead_s * 1e9);
+}
+
 void Ros2Hardware::report_counters(std::vector<std::pair<std::string, double>>& counters) const {
   counters.emplace_back("robot_states_refused", static_cast<double>(link_.invalid_states()));
   counters.emplace_back("robot_wrenches_refused", static_cast<double>(link_.invalid_wrenches()));

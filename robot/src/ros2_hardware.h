@@ -29,6 +29,7 @@ class Ros2Hardware final : public RobotHardware {
   bool compensates_gravity() const override { return config_.gravity_compensated; }
   HardwareLimits limits() const override;
   const char* name() const override { return name_.c_str(); }
+  int64_t cycle_phase_ns() const override;
   /// The states and wrenches the link refused (names, array sizes, frames, non-finite values).
   void report_counters(std::vector<std::pair<std::string, double>>& counters) const override;
 

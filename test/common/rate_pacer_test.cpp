@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstdlib>
 #include <stdexcept>
 #include <vector>
 
@@ -214,6 +215,49 @@ TEST(RatePacer, SleepsAgainWhenTheClockWakesEarly) {
   EXPECT_EQ(tick.deadline_ns, kT0 + kPeriod);
   EXPECT_GE(tick.now_ns, tick.deadline_ns);
   EXPECT_GT(clock.sleeps, 1);
+}
+
+// A robot whose 1 kHz cycle runs 0.4 ms off the pacer's and 50 ppm fast: its states arrive at
+// t_robot(k) + 0.3 ms. Steered towards arrival + 0.15 ms, the deadlines reach that phase and stay
+// on it, moving at most 25 us per cycle, without an overrun or a skipped deadline.
+TEST(RatePacer, SteersItsPhaseOntoARobotsCycleAndFollowsItsDrift) {
+  FakeClock clock(kT0);
+  RatePacer pacer(clock, kPeriod);
+  pacer.start();
+  const auto robot_cycle = [](int64_t k) { return kT0 + 400'000 + k * (kPeriod - 50); };
+  int64_t previous_deadline = 0;
+  int64_t phase_error = 0;
+  for (int64_t k = 0; k < 4000; ++k) {
+    const CycleTick tick = pacer.wait_next();
+    if (k > 0) {
+      EXPECT_LE(std::abs(tick.deadline_ns - previous_deadline - kPeriod), 25'000) << "cycle " << k;
+    }
+    previous_deadline = tick.deadline_ns;
+    // the newest state that has arrived by now
+    int64_t newest = (tick.now_ns - robot_cycle(0) - 300'000) / (kPeriod - 50);
+    const int64_t arrival = robot_cycle(newest) + 300'000;
+    phase_error = tick.deadline_ns - (arrival + 150'000);
+    clock.advance(100'000);
+    pacer.steer_phase(arrival + 150'000, kPeriod / 40);
+  }
+  // the last error: how far the deadline lags the drifting phase, within the step's resolution
+  EXPECT_LT(std::abs(phase_error), 1'000) << phase_error;
+  EXPECT_EQ(pacer.stats().overruns, 0u);
+  EXPECT_EQ(pacer.stats().skipped, 0u);
+}
+
+// the error is taken to the nearest deadline of the phase: half a period early, never a whole one late
+TEST(RatePacer, SteersThroughTheShorterWayRoundThePeriod) {
+  FakeClock clock(kT0);
+  RatePacer pacer(clock, kPeriod);
+  pacer.start();
+  (void)pacer.wait_next();  // the next deadline is kT0 + kPeriod
+  // 0.9 ms after it: modulo the period, 0.1 ms before it
+  pacer.steer_phase(kT0 + kPeriod + 900'000, 25'000);
+  EXPECT_EQ(pacer.wait_next().deadline_ns, kT0 + kPeriod - 12'500);  // an eighth of 0.1 ms earlier
+  // 0.3875 ms before the next deadline: an eighth is more than the cap
+  pacer.steer_phase(kT0 + 2 * kPeriod - 400'000, 25'000);
+  EXPECT_EQ(pacer.wait_next().deadline_ns, kT0 + 2 * kPeriod - 12'500 - 25'000);
 }
 
 }  // namespace

@@ -102,6 +102,9 @@ Outcome teleoperate_ros2_robot(const Site& site, const Robot& robot, const std::
   // the follower's last word to the controller is the hold; the robot then times out on its own
   EXPECT_TRUE(standin.wait_for_output("command timeout: holding", 10s)) << standin.output();
   (void)standin.stop(SIGTERM, 10s);
+  // the robot's account of the commands it got, for the log
+  const size_t summary = standin.output().rfind("standin: commands");
+  if (summary != std::string::npos) std::printf("%s", standin.output().substr(summary).c_str());
   return {runtime::read_report(site.report_path(tag)), follower.output(), standin.output()};
 }
 
@@ -124,8 +127,9 @@ TEST(Ros2Robot, EffortRobotWithShuffledJointsTouchesTheWallAsTheSimulation) {
   EXPECT_EQ(counter(ros2.follower, "hardware_faults"), 0.0) << ros2.follower_log;
   // the shuffled names are mapped: the wall contact is the simulation's
   expect_same_peak_contact(ros2.follower, mujoco);
-  // the tracking error is recorded, not compared: it ranged over 0.6-1.5 times the simulation's
-  // from run to run (docs/robots.md: likely the phase between the robot's loop and the follower's)
+  // recorded, not compared (docs/robots.md): a speed reflex held the arm for the rest of the run in
+  // 3 of 14 runs before the follower's cycle was locked to the robot's, none in 9 since
+  ::testing::Test::RecordProperty("reflex_trips", std::to_string(counter(ros2.follower, "reflex_trips")));
   EXPECT_GT(counter(ros2.follower, "tracking_rmse_rad"), 0.0);
   ::testing::Test::RecordProperty("tracking_rmse_ratio", std::to_string(counter(ros2.follower, "tracking_rmse_rad") /
                                                                          counter(mujoco, "tracking_rmse_rad")));

@@ -29,6 +29,8 @@ TEST(Ros2HardwareConfig, DefaultsFollowRos2ControlsExamples) {
   EXPECT_EQ(c.state_topic, "/joint_states");
   EXPECT_EQ(c.participant.domain_id, 0);
   EXPECT_DOUBLE_EQ(c.state_timeout_s, 0.02);
+  EXPECT_TRUE(c.phase_lock);
+  EXPECT_DOUBLE_EQ(c.phase_lock_lead_s, 150e-6);
   const Ros2HardwareConfig p = parse("follower:\n  ros2:\n    joints: [j1]\n    interface: position\n"
                                      "    transport: {domain_id: 7, initial_peers: [127.0.0.1]}\n");
   EXPECT_EQ(p.command_topic, "/forward_position_controller/commands");
@@ -47,6 +49,9 @@ TEST(Ros2HardwareConfig, RefusesWhatCannotWork) {
   EXPECT_NE(error_of("follower:\n  ros2: {joints: [a, b], max_torque_nm: [10]}\n").find("1 values for 2 joints"),
             std::string::npos);
   EXPECT_NE(error_of("follower:\n  ros2: {joints: [a], interface: torque}\n").find("ros2.interface"), std::string::npos);
+  // a lead of a whole cycle or more would put the follower's cycle after the robot's next one
+  EXPECT_NE(error_of("follower:\n  ros2: {joints: [a], phase_lock_lead_us: 1000}\n").find("ros2.phase_lock_lead_us"),
+            std::string::npos);
 }
 
 }  // namespace

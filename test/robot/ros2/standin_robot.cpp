@@ -139,8 +139,14 @@ struct CommandIntake {
   int64_t last_ns = 0;
   uint64_t received = 0;
   uint64_t wrong_size = 0;
+  // cycles while commanded that found no new command (the last one acted again), and that found
+  // more than one (all but the newest were never applied)
+  uint64_t cycles_without = 0;
+  uint64_t cycles_with_several = 0;
 
-  void take(size_t joints, int64_t now_ns) {
+  // returns how many commands arrived since the last cycle
+  uint64_t take(size_t joints, int64_t now_ns) {
+    const uint64_t before = received;
     void* samples[1] = {nullptr};
     dds_sample_info_t info[1];
     while (dds_take(reader, samples, info, 1, 1) > 0) {
@@ -155,6 +161,12 @@ struct CommandIntake {
       dds_return_loan(reader, samples, 1);
       samples[0] = nullptr;
     }
+    return received - before;
+  }
+
+  void count(uint64_t taken) {
+    if (taken == 0) ++cycles_without;
+    if (taken > 1) ++cycles_with_several;
   }
 };
 
@@ -240,7 +252,7 @@ int run(const Options& o) {
     }
     clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr);
     const int64_t now = teleop::monotonic_now_ns();
-    commands.take(n, now);
+    const uint64_t taken = commands.take(n, now);
     const bool timed_out = commands.received == 0 || static_cast<double>(now - commands.last_ns) * 1e-6 > o.command_timeout_ms;
     if (timed_out && !holding) {
       holding = true;
@@ -256,6 +268,7 @@ int run(const Options& o) {
       std::printf("standin: commanded at %.3f s\n", static_cast<double>(now - start_ns) * 1e-9);
       std::fflush(stdout);
     }
+    if (!holding) commands.count(taken);
     const JointVector tau = holding ? hold_torque(o, hold_q, s, n) : robot_torque(o, commands.values, s, n);
     (void)arm.write(tau);
     (void)arm.read(s);
@@ -274,8 +287,10 @@ int run(const Options& o) {
     if (!paused) states.write(s, epoch_ns + (cycle + 1) * 1'000'000);
     if (!paused && wrenches) wrenches->write(s);
   }
-  std::printf("standin: commands %llu, wrong size %llu, timeouts %llu\n", static_cast<unsigned long long>(commands.received),
-              static_cast<unsigned long long>(commands.wrong_size), static_cast<unsigned long long>(timeouts));
+  std::printf("standin: commands %llu, wrong size %llu, timeouts %llu, cycles without a new command %llu, with several %llu\n",
+              static_cast<unsigned long long>(commands.received), static_cast<unsigned long long>(commands.wrong_size),
+              static_cast<unsigned long long>(timeouts), static_cast<unsigned long long>(commands.cycles_without),
+              static_cast<unsigned long long>(commands.cycles_with_several));
   dds_delete(participant);
   dds_delete(cyclone_domain);
   return 0;

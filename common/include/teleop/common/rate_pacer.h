@@ -36,6 +36,11 @@ class RatePacer {
   void start();
   /// Waits for the next deadline and returns the cycle to run.
   CycleTick wait_next();
+  /// Moves the grid towards the phase of `phase_ns` (a time the deadlines should fall on, modulo
+  /// the period: when a robot that keeps its own cycle delivers its state, plus a margin), by an
+  /// eighth of the phase error and at most `max_step_ns` per call: the cycle follows the robot's
+  /// clock, its drift included, without a jump in the rate. Real-time safe.
+  void steer_phase(int64_t phase_ns, int64_t max_step_ns);
 
   int64_t period_ns() const { return period_ns_; }
   const PacerStats& stats() const { return stats_; }

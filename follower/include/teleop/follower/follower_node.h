@@ -41,6 +41,8 @@ class FollowerNode final : public runtime::NodeLogic {
   void active_faults(std::vector<uint32_t>& faults) const override;
   void fill_status(msg::NodeStatus& status) const override;
   void fill_report(runtime::NodeReport& report) const override;
+  /// The robot's cycle, where it keeps one (a ROS 2 robot): the loop starts just after its state.
+  int64_t pacing_phase_ns() const override { return hardware_->cycle_phase_ns(); }
   void trace_columns(std::vector<std::string>& columns) const override;
   void trace_row(double* row) const override;
 

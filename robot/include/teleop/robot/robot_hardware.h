@@ -73,6 +73,11 @@ class RobotHardware {
   /// does): the follower then sends its controller's torque minus its own g(q).
   virtual bool compensates_gravity() const = 0;
   virtual HardwareLimits limits() const = 0;
+  /// A robot that keeps its own cycle (a ROS 2 controller manager): a time the follower's cycle
+  /// should start at, modulo its period (just after the robot's newest state arrived, monotonic),
+  /// so that its command reaches the robot's next cycle. 0: the follower's cycle drives the robot
+  /// (a simulation stepped by write()). Real-time safe.
+  virtual int64_t cycle_phase_ns() const { return 0; }
   /// Adds the robot's own counters (samples it refused) to the follower's report. After the loop.
   virtual void report_counters(std::vector<std::pair<std::string, double>>& counters) const { (void)counters; }
   /// A name for logs and reports ("simple", "mujoco:scene_wall.xml").

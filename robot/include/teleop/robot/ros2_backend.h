@@ -42,6 +42,12 @@ struct Ros2HardwareConfig {
   double state_timeout_s = 0.02;
   /// How long the start waits for the robot's first state and its controller's subscription.
   double connect_timeout_s = 10.0;
+  /// The follower's cycle locked in phase to the robot's: it starts `phase_lock_lead_s` after the
+  /// robot's state arrives, so that the command it computes from that state makes the robot's next
+  /// cycle (off: the two 1 kHz loops drift against each other, and a command waits 0-1 ms for the
+  /// follower's cycle and 0-1 ms for the robot's).
+  bool phase_lock = true;
+  double phase_lock_lead_s = 150e-6;
   /// Effort robots only: the robot adds g(q) itself (franka_ros2 does); required, since the hold
   /// command is zero effort.
   bool gravity_compensated = true;

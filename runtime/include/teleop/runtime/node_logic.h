@@ -29,6 +29,11 @@ class NodeLogic {
   /// Adds the node's topics and counters to the final report. Called once after the loop.
   virtual void fill_report(NodeReport& report) const = 0;
 
+  /// A time the loop's deadlines should fall on, modulo the period (the follower of a robot that
+  /// keeps its own cycle: just after the robot's state arrives), or 0: the loop keeps its own grid.
+  /// Asked after each cycle. Real-time safe.
+  virtual int64_t pacing_phase_ns() const { return 0; }
+
   /// The names of the node's time-trace columns (`--trace FILE`), appended to `columns`. Called
   /// once before the loop; none (the default): the node writes no trace.
   virtual void trace_columns(std::vector<std::string>& columns) const { (void)columns; }
