@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "process_helpers.h"
+#include "results_row.h"
 #include "teleop/common/clock.h"
 #include "teleop/experiment/trace.h"
 
@@ -22,9 +23,8 @@ namespace teleop::test {
 namespace {
 
 // one row of the experiment's CSV, by column name; `report_dir` (if given) gets where the traces are
-std::map<std::string, std::string> run_stiff_wall(const std::string& architecture,
-                                                  const std::string& experiment = "stiff_wall.yaml",
-                                                  std::string* report_dir = nullptr) {
+ResultsRow run_stiff_wall(const std::string& architecture, const std::string& experiment = "stiff_wall.yaml",
+                          std::string* report_dir = nullptr) {
   const std::string dir = make_temp_dir();
   if (report_dir != nullptr) *report_dir = dir + "/" + architecture + "/wan-35ms";
   const std::string csv = dir + "/results.csv";
@@ -33,24 +33,9 @@ std::map<std::string, std::string> run_stiff_wall(const std::string& architectur
                                        "--domain", std::to_string(unique_domain()), "--no-plots"},
                                       std::chrono::seconds(90));
   EXPECT_EQ(r.exit_status, 0) << r.output;
-  std::istringstream lines(read_file(csv));
-  std::string header, row;
-  std::getline(lines, header);
-  std::getline(lines, row);
-  std::map<std::string, std::string> values;
-  std::istringstream h(header), v(row);
-  for (std::string name, value; std::getline(h, name, ',');) {
-    std::getline(v, value, ',');
-    values[name] = value;
-  }
-  ::testing::Test::RecordProperty("row", row);
+  const ResultsRow values = read_results_row(csv);
+  ::testing::Test::RecordProperty("row", read_file(csv));
   return values;
-}
-
-double number(const std::map<std::string, std::string>& row, const std::string& name) {
-  const auto it = row.find(name);
-  if (it == row.end() || it->second.empty()) return std::nan("");
-  return std::stod(it->second);
 }
 
 TEST(StiffWall, PositionPositionIsStableAndRendersTheContactForce) {
