@@ -4,7 +4,6 @@
 
 #include <fastdds/dds/domain/DomainParticipantListener.hpp>
 
-#include <atomic>
 #include <functional>
 #include <memory>
 #include <mutex>
