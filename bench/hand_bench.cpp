@@ -35,7 +35,7 @@
 #include "teleop/can/virtual_can_bus.h"
 #include "teleop/common/clock.h"
 #include "teleop/common/histogram.h"
-#include "teleop/hand/emulated_drive.h"
+#include "teleop/drive/emulated_drive.h"
 #include "teleop/hand/hand_adapter.h"
 #include "teleop/transport/participant.h"
 #include "teleop/transport/publication.h"
@@ -131,12 +131,12 @@ void cycle_cost_virtual(const Options& o) {
   can::VirtualCanBus bus;
   auto adapter_ep = bus.open("adapter");
   std::vector<std::unique_ptr<can::VirtualCanEndpoint>> eps;
-  std::vector<std::unique_ptr<hand::EmulatedDrive>> drives;
+  std::vector<std::unique_ptr<drive::EmulatedDrive>> drives;
   for (can::NodeId n = 1; n <= 9; ++n) {
     eps.push_back(bus.open("drive"));
-    hand::EmulatedDriveConfig c;
+    drive::EmulatedDriveConfig c;
     c.node_id = n;
-    drives.push_back(std::make_unique<hand::EmulatedDrive>(*eps.back(), c));
+    drives.push_back(std::make_unique<drive::EmulatedDrive>(*eps.back(), c));
   }
   HandAdapter adapter(*adapter_ep, hand::HandAdapterConfig{});
   // the drives run between the cycles, outside the timed call

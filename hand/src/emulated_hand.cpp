@@ -6,7 +6,7 @@
 
 namespace teleop::hand {
 
-EmulatedHand::EmulatedHand(const std::vector<EmulatedHandNode>& nodes, SharedDrivePlant* plant) : plant_(plant) {
+EmulatedHand::EmulatedHand(const std::vector<EmulatedHandNode>& nodes, drive::SharedDrivePlant* plant) : plant_(plant) {
   if (plant_ != nullptr) {
     plant_step_s_ = plant_->step_s();
     plant_step_ns_ = std::isfinite(plant_step_s_) ? std::llround(plant_step_s_ * 1e9) : 0;
@@ -19,7 +19,7 @@ EmulatedHand::EmulatedHand(const std::vector<EmulatedHandNode>& nodes, SharedDri
   for (const EmulatedHandNode& node : nodes) {
     if (node.bus == nullptr) throw std::invalid_argument("EmulatedHand: node without a bus");
     if (plant_ == nullptr) {
-      drives_.push_back(std::make_unique<EmulatedDrive>(*node.bus, node.config));
+      drives_.push_back(std::make_unique<drive::EmulatedDrive>(*node.bus, node.config));
       continue;
     }
     if (node.channel >= taken.size()) {
@@ -31,7 +31,7 @@ EmulatedHand::EmulatedHand(const std::vector<EmulatedHandNode>& nodes, SharedDri
                                   " is turned by two drives (node " + std::to_string(node.config.node_id) + ")");
     }
     taken[node.channel] = true;
-    drives_.push_back(std::make_unique<EmulatedDrive>(*node.bus, node.config, plant_->channel(node.channel)));
+    drives_.push_back(std::make_unique<drive::EmulatedDrive>(*node.bus, node.config, plant_->channel(node.channel)));
   }
 }
 

@@ -100,7 +100,7 @@ ScheduledFault parse_fault_spec(const std::string& spec) {
     }
     f.value = static_cast<uint32_t>(code);
   } else if (kind->takes_value) {
-    uint64_t count = EmulatedDrive::kDropForever;
+    uint64_t count = drive::EmulatedDrive::kDropForever;
     if (parts.size() == 4 && (!parse_number(parts[3], 0xFFFFFFFE, count) || count == 0)) {
       throw fail("the count must be a positive number");
     }
@@ -109,7 +109,7 @@ ScheduledFault parse_fault_spec(const std::string& spec) {
   return f;
 }
 
-CanStatus apply_fault(const ScheduledFault& fault, EmulatedDrive& drive, CanBus& bus) {
+CanStatus apply_fault(const ScheduledFault& fault, drive::EmulatedDrive& drive, CanBus& bus) {
   switch (fault.kind) {
     case FaultKind::kHeartbeatStop:
     case FaultKind::kHeartbeatResume:

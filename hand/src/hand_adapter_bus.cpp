@@ -7,7 +7,7 @@
 
 #include "teleop/can/cia402.h"
 #include "teleop/hand/hand_adapter.h"
-#include "teleop/hand/hand_drive_objects.h"
+#include "teleop/drive/drive_objects.h"
 
 namespace teleop::hand {
 
@@ -123,12 +123,12 @@ void HandAdapter::queue_configuration(Drive& d, size_t motor) {
   // drive: cyclic synchronous position, gains, current limit, limits, heartbeat
   queue_sdo(d, od::kModesOfOperation, 0, static_cast<uint8_t>(cia402::kModeCyclicSynchronousPosition), 1);
   const HandGains& g = config_.gains;
-  const double gains[hand_od::gain::kCount] = {g.position_kp_a_per_rad,      g.position_ki_a_per_rad_s,
+  const double gains[drive::drive_od::gain::kCount] = {g.position_kp_a_per_rad,      g.position_ki_a_per_rad_s,
                                                g.position_kd_a_s_per_rad,    g.position_integral_limit_a,
                                                g.max_reference_velocity_radps, g.current_kp_v_per_a,
                                                g.current_ki_v_per_a_s};
-  for (uint8_t s = 1; s <= hand_od::gain::kCount; ++s) {
-    queue_sdo(d, hand_od::kGains, s, hand_od::real32_bits(gains[s - 1]), 4);
+  for (uint8_t s = 1; s <= drive::drive_od::gain::kCount; ++s) {
+    queue_sdo(d, drive::drive_od::kGains, s, drive::drive_od::real32_bits(gains[s - 1]), 4);
   }
   const auto permille = d.channel.amps_to_max_current_permille(d.current_limit_a);
   queue_sdo(d, od::kMaxCurrent, 0, permille.ok() ? *permille : 0, 2);

@@ -45,10 +45,10 @@ constexpr double kSimLogIntervalS = 0.02;
 // the winding's stall current through k_t, the gearbox and its efficiency (so MuJoCo never clamps
 // a torque a drive makes).
 std::unique_ptr<teleop::hand::MujocoDrivePlants> load_mujoco_hand(const std::string& path, const std::string& keyframe,
-                                                                  const teleop::hand::EmulatedDriveConfig& drive) {
+                                                                  const teleop::drive::EmulatedDriveConfig& drive) {
   teleop::sim::MujocoModel model = teleop::sim::MujocoModel::load(path);
   if (!keyframe.empty()) model.reset(keyframe);
-  const teleop::hand::EmulatedMotorParams& m = drive.motor;
+  const teleop::drive::EmulatedMotorParams& m = drive.motor;
   const double stall_torque_nm =
       m.supply_v / m.resistance_ohm * m.torque_constant_nm_per_a * m.gear_ratio * m.gear_efficiency;
   return std::make_unique<teleop::hand::MujocoDrivePlants>(
@@ -219,7 +219,7 @@ int main(int argc, char** argv) {
     ::clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &wake, nullptr);
   }
   for (size_t i = 0; i < hand->drives(); ++i) {
-    const teleop::hand::EmulatedDrive& d = hand->drive(i);
+    const teleop::drive::EmulatedDrive& d = hand->drive(i);
     const auto& s = d.stats();
     std::fprintf(stderr, "node %u: nmt %s, rx %llu, tx %llu, sdo %llu, sync %llu\n", unsigned{d.node_id()},
                  teleop::can::to_string(d.nmt_state()), static_cast<unsigned long long>(s.frames_received),

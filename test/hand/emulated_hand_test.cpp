@@ -13,9 +13,9 @@ namespace teleop::hand {
 namespace {
 
 // Records what the drives apply: time and torque per channel between steps.
-class FakeSharedPlant final : public SharedDrivePlant {
+class FakeSharedPlant final : public drive::SharedDrivePlant {
  public:
-  class Channel final : public DrivePlant {
+  class Channel final : public drive::DrivePlant {
    public:
     double position_rad() const override { return 0.0; }
     double velocity_radps() const override { return 0.0; }
@@ -24,7 +24,7 @@ class FakeSharedPlant final : public SharedDrivePlant {
   };
   explicit FakeSharedPlant(size_t n) : channels_(n) {}
   size_t channels() const override { return channels_.size(); }
-  DrivePlant& channel(size_t k) override { return channels_[k]; }
+  drive::DrivePlant& channel(size_t k) override { return channels_[k]; }
   double step_s() const override { return 1e-3; }
   void step() override {
     // every drive has applied its torque for exactly one step when the plant steps

@@ -31,7 +31,7 @@ TEST(FaultSchedule, ParsesEveryKind) {
   EXPECT_EQ(emcy_fault.node, 4);
   EXPECT_EQ(emcy_fault.kind, FaultKind::kEmcy);
   EXPECT_EQ(emcy_fault.value, 0x2310u);
-  EXPECT_EQ(parse_fault_spec("1:9:drop-tpdo").value, EmulatedDrive::kDropForever);
+  EXPECT_EQ(parse_fault_spec("1:9:drop-tpdo").value, drive::EmulatedDrive::kDropForever);
   EXPECT_EQ(parse_fault_spec("1:9:drop-tpdo:5").value, 5u);
   for (const char* kind : {"heartbeat-stop", "heartbeat-resume", "stall", "free", "tpdo-resume", "drop-rpdo",
                            "rpdo-resume", "refuse-sdo", "accept-sdo", "bus-off", "restarted"}) {
@@ -69,9 +69,9 @@ TEST(FaultSchedule, AppliesToTheDriveOrSendsTheErrorFrame) {
   VirtualCanBus bus;
   auto drive_ep = bus.open("drive");
   auto observer = bus.open("observer");
-  EmulatedDriveConfig c;
+  drive::EmulatedDriveConfig c;
   c.node_id = 3;
-  EmulatedDrive drive(*drive_ep, c);
+  drive::EmulatedDrive drive(*drive_ep, c);
   drive.step(1e-3);
   ASSERT_EQ(apply_fault(parse_fault_spec("0:3:emcy:0x7121"), drive, *drive_ep), CanStatus::kOk);
   EXPECT_EQ(drive.error_code(), 0x7121);

@@ -45,7 +45,7 @@ TEST(HandAdapter, BootsConfiguresAndEnablesEveryDrive) {
                                                            << rig.adapter().message();
   EXPECT_TRUE(rig.adapter().started());
   for (size_t i = 0; i < rig.drives(); ++i) {
-    const EmulatedDrive& d = rig.drive(i);
+    const drive::EmulatedDrive& d = rig.drive(i);
     EXPECT_EQ(d.nmt_state(), NmtState::kOperational);
     EXPECT_EQ(d.state(), State::kOperationEnabled) << "node " << int{d.node_id()};
     EXPECT_EQ(d.mode_of_operation(), cia402::kModeCyclicSynchronousPosition);
@@ -175,7 +175,7 @@ TEST(HandAdapter, MissingHeartbeatHoldsAndRecovers) {
 
 TEST(HandAdapter, StalePdoHoldsAndRecovers) {
   expect_fault_and_recovery({"pdo timeout", hand_fault::kStalePdo,
-                             [](HandRig& r) { r.drive(3).drop_tpdos(EmulatedDrive::kDropForever); },
+                             [](HandRig& r) { r.drive(3).drop_tpdos(drive::EmulatedDrive::kDropForever); },
                              [](HandRig& r) { r.drive(3).drop_tpdos(0); }});
 }
 

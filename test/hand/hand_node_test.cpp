@@ -12,8 +12,8 @@
 #include "node_harness.h"
 #include "teleop/can/cia301.h"
 #include "teleop/can/virtual_can_bus.h"
-#include "teleop/hand/emulated_drive.h"
-#include "teleop/hand/hand_drive_objects.h"
+#include "teleop/drive/emulated_drive.h"
+#include "teleop/drive/drive_objects.h"
 
 namespace teleop::hand {
 namespace {
@@ -24,9 +24,9 @@ class DriveThread {
   explicit DriveThread(can::VirtualCanBus& bus) {
     for (can::NodeId node = 1; node <= 9; ++node) {
       endpoints_.push_back(bus.open("drive"));
-      EmulatedDriveConfig c;
+      drive::EmulatedDriveConfig c;
       c.node_id = node;
-      drives_.push_back(std::make_unique<EmulatedDrive>(*endpoints_.back(), c));
+      drives_.push_back(std::make_unique<drive::EmulatedDrive>(*endpoints_.back(), c));
     }
     thread_ = std::thread([this] {
       while (!stop_) {
@@ -42,7 +42,7 @@ class DriveThread {
 
  private:
   std::vector<std::unique_ptr<can::VirtualCanEndpoint>> endpoints_;
-  std::vector<std::unique_ptr<EmulatedDrive>> drives_;
+  std::vector<std::unique_ptr<drive::EmulatedDrive>> drives_;
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };
@@ -102,7 +102,7 @@ TEST_F(HandNodeTest, FollowsHandCommandAndPublishesStateAndTwentyJoints) {
 TEST_F(HandNodeTest, EmcyIsReportedAsSafeHoldAndFaultResetRecovers) {
   run(0.3, 0.4);
   // a tool raises an over-current fault in node 4 through the fault injection object
-  ASSERT_EQ(tool->send(*can::encode_sdo_download_request(4, hand_od::kFaultInjection, hand_od::inject::kRaiseFault,
+  ASSERT_EQ(tool->send(*can::encode_sdo_download_request(4, drive::drive_od::kFaultInjection, drive::drive_od::inject::kRaiseFault,
                                                          can::emcy::kOverCurrent, 4)),
             can::CanStatus::kOk);
   run(0.3, 0.2);

@@ -20,7 +20,7 @@ class HandRig {
   /// Drives for every node of the config except those in `missing`; node k of the config's
   /// list turns channel k of `plant` (null: each its own link).
   explicit HandRig(const HandAdapterConfig& config = {}, std::vector<NodeId> missing = {},
-                   SharedDrivePlant* plant = nullptr)
+                   drive::SharedDrivePlant* plant = nullptr)
       : adapter_ep_(bus_.open("adapter")), adapter_(*adapter_ep_, config) {
     std::vector<EmulatedHandNode> nodes;
     for (size_t k = 0; k < config.node_ids.size(); ++k) {
@@ -42,7 +42,7 @@ class HandRig {
   HandAdapter& adapter() { return adapter_; }
   VirtualCanEndpoint& adapter_endpoint() { return *adapter_ep_; }
   VirtualCanBus& bus() { return bus_; }
-  EmulatedDrive& drive(size_t i) { return hand_->drive(i); }
+  drive::EmulatedDrive& drive(size_t i) { return hand_->drive(i); }
   size_t drives() const { return hand_->drives(); }
   EmulatedHand& hand() { return *hand_; }
   int64_t now_ns() const { return now_ns_; }

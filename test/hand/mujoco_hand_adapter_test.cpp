@@ -196,7 +196,7 @@ TEST(MujocoHandAdapter, SafeHoldKeepsTheObjectOnAMissingHeartbeat) {
 
 TEST(MujocoHandAdapter, SafeHoldKeepsTheObjectOnStalePdos) {
   fault_in_grasp({"stale pdo", hand_fault::kStalePdo, 5,
-                  [](Grasped& g) { g.rig.drive(5).drop_tpdos(EmulatedDrive::kDropForever); }});
+                  [](Grasped& g) { g.rig.drive(5).drop_tpdos(drive::EmulatedDrive::kDropForever); }});
 }
 
 TEST(MujocoHandAdapter, SafeHoldKeepsTheObjectOnBusOff) {

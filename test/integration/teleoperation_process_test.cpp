@@ -144,7 +144,7 @@ TEST(StiffWall, FollowerKilledInContactFadesTheFeedbackOut) {
       norm += (*tau)[k] * (*tau)[k];
     }
     if (t[k] < killed_s) felt_before = std::sqrt(norm);
-    if (t[k] > killed_s && std::isnan(lost_at) && state[k] == msg::STATE_SAFE_HOLD) {
+    if (t[k] > killed_s && std::isnan(lost_at) && state[k] == static_cast<double>(msg::STATE_SAFE_HOLD)) {
       lost_at = t[k];
       lost_row = k;
     }

@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "teleop/can/socketcan_bus.h"
-#include "teleop/hand/emulated_drive.h"
+#include "teleop/drive/emulated_drive.h"
 #include "teleop/hand/hand_adapter.h"
-#include "teleop/hand/hand_drive_objects.h"
+#include "teleop/drive/drive_objects.h"
 #include "vcan_support.h"
 
 namespace teleop::hand {
@@ -55,8 +55,8 @@ SocketCanOptions master_options(const HandAdapterConfig& c) {
 // "60N#23002FSSVVVVVVVV": an expedited 4-byte SDO download to the fault injection object
 std::string injection_frame(NodeId node, uint8_t subindex, uint32_t value) {
   char text[64];
-  std::snprintf(text, sizeof text, "%03X#23%02X%02X%02X%02X%02X%02X%02X", 0x600u + node, hand_od::kFaultInjection & 0xFF,
-                hand_od::kFaultInjection >> 8, subindex, value & 0xFF, (value >> 8) & 0xFF, (value >> 16) & 0xFF,
+  std::snprintf(text, sizeof text, "%03X#23%02X%02X%02X%02X%02X%02X%02X", 0x600u + node, drive::drive_od::kFaultInjection & 0xFF,
+                drive::drive_od::kFaultInjection >> 8, subindex, value & 0xFF, (value >> 8) & 0xFF, (value >> 16) & 0xFF,
                 value >> 24);
   return text;
 }
@@ -244,16 +244,16 @@ void fault_and_recovery(const FaultCase& c) {
 
 TEST(HandAdapterVcan, MissingHeartbeatHoldsAndRecovers) {
   fault_and_recovery({"heartbeat of node 4", 3, hand_fault::kHeartbeat,
-                      [](HandOnVcan& h) { ASSERT_TRUE(h.inject(4, hand_od::inject::kSuppressHeartbeat, 1)); },
-                      [](HandOnVcan& h) { ASSERT_TRUE(h.inject(4, hand_od::inject::kSuppressHeartbeat, 0)); }});
+                      [](HandOnVcan& h) { ASSERT_TRUE(h.inject(4, drive::drive_od::inject::kSuppressHeartbeat, 1)); },
+                      [](HandOnVcan& h) { ASSERT_TRUE(h.inject(4, drive::drive_od::inject::kSuppressHeartbeat, 0)); }});
 }
 
 TEST(HandAdapterVcan, PdoTimeoutHoldsAndRecovers) {
   fault_and_recovery({"TPDOs of node 6 dropped", 5, hand_fault::kStalePdo,
                       [](HandOnVcan& h) {
-                        ASSERT_TRUE(h.inject(6, hand_od::inject::kDropTpdos, EmulatedDrive::kDropForever));
+                        ASSERT_TRUE(h.inject(6, drive::drive_od::inject::kDropTpdos, drive::EmulatedDrive::kDropForever));
                       },
-                      [](HandOnVcan& h) { ASSERT_TRUE(h.inject(6, hand_od::inject::kDropTpdos, 0)); }});
+                      [](HandOnVcan& h) { ASSERT_TRUE(h.inject(6, drive::drive_od::inject::kDropTpdos, 0)); }});
 }
 
 TEST(HandAdapterVcan, BusOffErrorFrameHoldsAndRecovers) {
@@ -274,7 +274,7 @@ TEST(HandAdapterVcan, EmcyHoldsWithTheCodeAndRecovers) {
   ASSERT_NO_FATAL_FAILURE(expect_operational(hand));
   hand.command(0.4);
   hand.run(0.3);
-  ASSERT_TRUE(hand.inject(7, hand_od::inject::kRaiseFault, emcy::kOverCurrent));
+  ASSERT_TRUE(hand.inject(7, drive::drive_od::inject::kRaiseFault, emcy::kOverCurrent));
   ASSERT_TRUE(hand.run_until_fault(6, hand_fault::kEmcy, 5.0)) << hand.adapter().message();
   EXPECT_EQ(hand.adapter().phase(), HandPhase::kSafeHold);
   hand.run(0.1);
@@ -291,26 +291,26 @@ TEST(HandAdapterVcan, StalledMotorEndsInFollowingErrorAndRecovers) {
   ASSERT_NO_FATAL_FAILURE(expect_operational(hand));
   hand.command(0.2);
   hand.run(0.5);
-  ASSERT_TRUE(hand.inject(3, hand_od::inject::kStall, 1));
+  ASSERT_TRUE(hand.inject(3, drive::drive_od::inject::kStall, 1));
   hand.run(0.1);
   hand.command(0.8);  // the jammed motor cannot follow: following error after 0x6066 (100 ms)
   ASSERT_TRUE(hand.run_until([](const HandAdapter& a) { return a.feedback().error_code[2] == emcy::kFollowingError; },
                              5.0))
       << hand.adapter().message();
   EXPECT_EQ(hand.adapter().phase(), HandPhase::kSafeHold);
-  ASSERT_TRUE(hand.inject(3, hand_od::inject::kStall, 0));
+  ASSERT_TRUE(hand.inject(3, drive::drive_od::inject::kStall, 0));
   ASSERT_TRUE(hand.reset_and_recover(0.5)) << hand.adapter().message();
 }
 
 TEST(HandAdapterVcan, SdoAbortHoldsWithTheAbortCodeAndRecovers) {
   HandOnVcan hand;
   ASSERT_NO_FATAL_FAILURE(expect_operational(hand));
-  ASSERT_TRUE(hand.inject(2, hand_od::inject::kRefuseSdo, 1));
+  ASSERT_TRUE(hand.inject(2, drive::drive_od::inject::kRefuseSdo, 1));
   hand.command(0.4, false, 1.0);  // a new current limit goes out by SDO, node 2 aborts it
   ASSERT_TRUE(hand.run_until_fault(1, hand_fault::kSdo, 5.0)) << hand.adapter().message();
   EXPECT_EQ(hand.adapter().phase(), HandPhase::kSafeHold);
   EXPECT_EQ(hand.adapter().feedback().sdo_abort_code[1], sdo_abort::kLocalControl);
-  ASSERT_TRUE(hand.inject(2, hand_od::inject::kRefuseSdo, 0));
+  ASSERT_TRUE(hand.inject(2, drive::drive_od::inject::kRefuseSdo, 0));
   ASSERT_TRUE(hand.reset_and_recover(0.4)) << hand.adapter().message();
 }
 

@@ -18,7 +18,7 @@
 
 #include "teleop/can/cia301.h"
 #include "teleop/can/socketcan_bus.h"
-#include "teleop/hand/emulated_drive.h"
+#include "teleop/drive/emulated_drive.h"
 #include "vcan_support.h"
 
 namespace teleop::can {
@@ -27,8 +27,8 @@ namespace {
 using namespace std::chrono_literals;
 
 using test::iface;
-using hand::EmulatedDrive;
-using hand::EmulatedDriveConfig;
+using drive::EmulatedDrive;
+using drive::EmulatedDriveConfig;
 
 CanFrame frame(uint32_t id, std::initializer_list<uint8_t> bytes) {
   CanFrame f;
@@ -137,9 +137,9 @@ TEST(SocketCanVcan, EmulatedDriveBootsAndAnswersSdoUpload) {
   SocketCanOptions options;
   options.filters = canopen_node_filters(3);
   SocketCanBus drive_bus(iface(), options);
-  EmulatedDriveConfig config;
+  drive::EmulatedDriveConfig config;
   config.node_id = 3;
-  EmulatedDrive drive(drive_bus, config);
+  drive::EmulatedDrive drive(drive_bus, config);
   std::atomic<bool> stop{false};
   std::thread stepper([&] {
     while (!stop) {
@@ -156,7 +156,7 @@ TEST(SocketCanVcan, EmulatedDriveBootsAndAnswersSdoUpload) {
   const auto response = decode_sdo_response(got);
   ASSERT_TRUE(response.ok());
   EXPECT_EQ(response->type, SdoType::kUploadResponse);
-  EXPECT_EQ(response->data, EmulatedDrive::kDeviceType);
+  EXPECT_EQ(response->data, drive::EmulatedDrive::kDeviceType);
   // NMT start: the heartbeat then reports operational (0x05)
   ASSERT_EQ(master.send(encode_nmt(NmtCommand::kStart, 3).value()), CanStatus::kOk);
   bool operational = false;

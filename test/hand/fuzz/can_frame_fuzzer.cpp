@@ -11,7 +11,7 @@
 #include "teleop/can/can_frame.h"
 #include "teleop/can/cia301.h"
 #include "teleop/can/cia402.h"
-#include "teleop/hand/emulated_drive.h"
+#include "teleop/drive/emulated_drive.h"
 #include "teleop/hand/hand_adapter.h"
 
 namespace {
@@ -91,9 +91,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   // the adapter reads everything the bus hands it, in every phase the input can reach
   HandAdapter adapter(adapter_bus, HandAdapterConfig{});
-  EmulatedDriveConfig drive_config;
+  teleop::drive::EmulatedDriveConfig drive_config;
   drive_config.node_id = 3;
-  EmulatedDrive drive(drive_bus, drive_config);
+  teleop::drive::EmulatedDrive drive(drive_bus, drive_config);
   int64_t now = 0;
   while (adapter_bus.next < adapter_bus.frames.size() || drive_bus.next < drive_bus.frames.size()) {
     adapter_bus.bus_state = static_cast<CanBusState>(adapter_bus.next % 5 == 4 ? now % 5 : 0);

@@ -18,7 +18,7 @@
 
 #include "teleop/can/can_bus.h"
 #include "teleop/can/cia301.h"
-#include "teleop/hand/emulated_drive.h"
+#include "teleop/drive/emulated_drive.h"
 
 namespace teleop::hand {
 
@@ -45,13 +45,13 @@ struct ScheduledFault {
   double at_s = 0.0;
   can::NodeId node = 1;
   FaultKind kind = FaultKind::kHeartbeatStop;
-  uint32_t value = 0;  // EMCY code, or a PDO count (EmulatedDrive::kDropForever)
+  uint32_t value = 0;  // EMCY code, or a PDO count (drive::EmulatedDrive::kDropForever)
 };
 
 /// Parses SECONDS:NODE:KIND[:VALUE]. Throws std::invalid_argument naming the spec and the problem.
 ScheduledFault parse_fault_spec(const std::string& spec);
 
 /// Does it: on the drive, or for bus-off / restarted an error frame sent on `bus`.
-can::CanStatus apply_fault(const ScheduledFault& fault, EmulatedDrive& drive, can::CanBus& bus);
+can::CanStatus apply_fault(const ScheduledFault& fault, drive::EmulatedDrive& drive, can::CanBus& bus);
 
 }  // namespace teleop::hand

@@ -55,7 +55,7 @@ constexpr uint32_t kBusPassive = 128; // the CAN controller went error passive
 constexpr uint32_t kSdo = 256;        // an SDO transfer was aborted or timed out
 }  // namespace hand_fault
 
-/// Controller gains written to every drive (manufacturer object 0x2000, hand_drive_objects.h).
+/// Controller gains written to every drive (manufacturer object 0x2000, teleop/drive/drive_objects.h).
 struct HandGains {
   double position_kp_a_per_rad = 19.8;
   double position_ki_a_per_rad_s = 150.0;

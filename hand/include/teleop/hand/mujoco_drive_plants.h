@@ -14,12 +14,12 @@
 
 #include <array>
 
-#include "teleop/hand/drive_plant.h"
+#include "teleop/drive/drive_plant.h"
 #include "teleop/hand/hand_plant.h"
 
 namespace teleop::hand {
 
-class MujocoDrivePlants final : public SharedDrivePlant {
+class MujocoDrivePlants final : public drive::SharedDrivePlant {
  public:
   /// Takes the hand; sets every motor actuator's torque limit to `torque_limit_nm` (> 0: the
   /// most the drives' motors can give at the gearbox output, so that MuJoCo never clamps a
@@ -28,7 +28,7 @@ class MujocoDrivePlants final : public SharedDrivePlant {
   MujocoDrivePlants(HandPlant hand, double torque_limit_nm);
 
   size_t channels() const override { return kHandMotors; }
-  DrivePlant& channel(size_t k) override { return channels_[k]; }
+  drive::DrivePlant& channel(size_t k) override { return channels_[k]; }
   double step_s() const override;
   void step() override;
 
@@ -43,7 +43,7 @@ class MujocoDrivePlants final : public SharedDrivePlant {
   void sync_from_model();
 
  private:
-  class Channel final : public DrivePlant {
+  class Channel final : public drive::DrivePlant {
    public:
     double position_rad() const override { return m_rad_ + dm_radps_ * elapsed_s_; }
     double velocity_radps() const override { return dm_radps_; }
