@@ -17,8 +17,11 @@ void Cia402Device::reset() {
   error_register_ = 0;
   error_code_ = 0;
   controlword_ = 0;
+  controlword_stale_ = false;
   mode_ = cia402::kModeNone;
   target_ticks_ = 0;
+  target_torque_permille_ = 0;
+  abort_connection_option_ = config_.abort_connection_option;
   const double window_ticks = config_.following_error_window_rad * motor_.ticks_per_rad();
   following_error_window_ticks_ = window_ticks >= static_cast<double>(kFollowingErrorOff)
                                       ? kFollowingErrorOff
@@ -43,16 +46,19 @@ uint16_t Cia402Device::statusword() const {
   if (state_ != State::kNotReadyToSwitchOn) s |= cia402::sw::kVoltageEnabled;
   if (internal_limit_) s |= cia402::sw::kInternalLimitActive;
   if (following_error_) s |= cia402::sw::kFollowingError;
-  if (state_ == State::kOperationEnabled && mode_ == cia402::kModeCyclicSynchronousPosition) {
-    s |= cia402::sw::kDriveFollowsCommand;
-  }
+  if (state_ == State::kOperationEnabled && mode_ != cia402::kModeNone) s |= cia402::sw::kDriveFollowsCommand;
   return s;
 }
 
 void Cia402Device::set_controlword(uint16_t controlword) {
   const uint16_t previous = controlword_;
   controlword_ = controlword;
+  controlword_stale_ = false;
   evaluate_controlword(previous);
+}
+
+void Cia402Device::evaluate_held_controlword() {
+  if (!controlword_stale_) evaluate_controlword(controlword_);
 }
 
 void Cia402Device::evaluate_controlword(uint16_t previous) {
@@ -73,6 +79,21 @@ void Cia402Device::evaluate_controlword(uint16_t previous) {
 
 void Cia402Device::raise_fault(uint16_t error_code, const std::array<uint8_t, 5>& vendor) {
   enter_fault(error_code, vendor);
+}
+
+void Cia402Device::connection_lost() {
+  namespace option = cia402::abort_connection;
+  controlword_stale_ = true;
+  if (abort_connection_option_ == option::kFault) {
+    enter_fault(can::emcy::kHeartbeatError, {});
+    return;
+  }
+  nmt_.send_emcy(can::emcy::kHeartbeatError, can::error_register_for(can::emcy::kHeartbeatError), {});
+  if (abort_connection_option_ == option::kDisableVoltage) {
+    enter_state(cia402::next_state(state_, cia402::Command::kDisableVoltage));
+  } else if (abort_connection_option_ == option::kQuickStop) {
+    enter_state(cia402::next_state(state_, cia402::Command::kQuickStop));
+  }
 }
 
 bool Cia402Device::power_on() const { return state_ == State::kOperationEnabled || state_ == State::kQuickStopActive; }
@@ -111,6 +132,10 @@ void Cia402Device::control_position(int64_t period_ns) {
     servo_.follow(measured);
     return;
   }
+  if (state_ == State::kOperationEnabled && mode_ == cia402::kModeCyclicSynchronousTorque) {
+    control_torque();
+    return;
+  }
   // the reference: the target within the software limits in CSP, else held (quick stop, no mode)
   bool limited = false;
   if (state_ == State::kOperationEnabled && mode_ == cia402::kModeCyclicSynchronousPosition) {
@@ -121,6 +146,15 @@ void Cia402Device::control_position(int64_t period_ns) {
   const ServoController::Regulation regulation = servo_.regulate(measured, current_limit_a());
   internal_limit_ = limited || regulation.saturated;
   monitor_following_error(regulation.error_rad, period_ns);
+}
+
+// CST: the current that makes the target torque; the position loop rests at the link, so that
+// a quick stop holds from where it finds it
+void Cia402Device::control_torque() {
+  const double motor_torque_nm = target_torque_permille_ * 1e-3 * rated_torque_mnm() * 1e-3;
+  internal_limit_ = servo_.drive_current(motor_torque_nm / config_.motor.torque_constant_nm_per_a, current_limit_a(),
+                                         motor_.measured_rad());
+  following_error_ns_ = 0;
 }
 
 int32_t Cia402Device::target_within_limits(bool& limited) const {
@@ -158,8 +192,22 @@ void Cia402Device::advance_fault_reaction(int64_t dt_ns) {
 }
 
 bool Cia402Device::set_mode(int8_t mode) {
-  if (mode != cia402::kModeNone && mode != cia402::kModeCyclicSynchronousPosition) return false;
+  if (mode != cia402::kModeNone && mode != cia402::kModeCyclicSynchronousPosition &&
+      mode != cia402::kModeCyclicSynchronousTorque) {
+    return false;
+  }
   mode_ = mode;
+  return true;
+}
+
+uint32_t Cia402Device::rated_torque_mnm() const {
+  const double mnm = config_.motor.torque_constant_nm_per_a * config_.rated_current_a * 1e3;
+  return std::max<uint32_t>(1, static_cast<uint32_t>(std::lround(mnm)));
+}
+
+bool Cia402Device::set_abort_connection_option(int16_t code) {
+  if (code < cia402::abort_connection::kNoAction || code > cia402::abort_connection::kQuickStop) return false;
+  abort_connection_option_ = code;
   return true;
 }
 

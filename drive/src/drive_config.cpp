@@ -46,6 +46,10 @@ void validate(const EmulatedDriveConfig& config) {
   if (!(config.following_error_window_rad > 0) || !(config.fault_reaction_time_s >= 0)) {
     throw std::invalid_argument("EmulatedDrive: following_error_window_rad > 0, fault_reaction_time_s >= 0");
   }
+  if (config.abort_connection_option < can::cia402::abort_connection::kNoAction ||
+      config.abort_connection_option > can::cia402::abort_connection::kQuickStop) {
+    throw std::invalid_argument("EmulatedDrive: abort_connection_option must be 0..3 (CiA 402 0x6007)");
+  }
 }
 
 }  // namespace teleop::drive

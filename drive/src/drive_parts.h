@@ -7,6 +7,7 @@
 #include "cia402_device.h"
 #include "drive_link.h"
 #include "fault_injection.h"
+#include "heartbeat_consumer.h"
 #include "link_plant.h"
 #include "motor_model.h"
 #include "nmt_slave.h"
@@ -31,19 +32,20 @@ struct EmulatedDrive::Parts {
         device(config, servo, motor, nmt),
         faults(link),
         pdos(link, faults, nmt, device),
-        objects({config, nmt, pdos, device, servo, motor, faults, now_ns}),
+        objects({config, nmt, pdos, device, servo, motor, faults, heartbeats, now_ns}),
         sdo(config.node_id, link, nmt, faults) {}
 
   std::unique_ptr<LinkPlant> own_plant;  // null when the plant is someone else's
-  drive::DriveLink link;
-  drive::MotorModel motor;
-  drive::ServoController servo;
-  drive::NmtSlave nmt;
-  drive::Cia402Device device;
-  drive::FaultInjection faults;
-  drive::PdoEngine pdos;
-  drive::ObjectDictionary objects;
-  drive::SdoServer sdo;
+  DriveLink link;
+  MotorModel motor;
+  ServoController servo;
+  NmtSlave nmt;
+  Cia402Device device;
+  FaultInjection faults;
+  HeartbeatConsumer heartbeats;
+  PdoEngine pdos;
+  ObjectDictionary objects;
+  SdoServer sdo;
 };
 
 }  // namespace teleop::drive

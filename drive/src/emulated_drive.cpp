@@ -40,6 +40,7 @@ void EmulatedDrive::reset_application() {
 void EmulatedDrive::reset_communication() {
   parts_->nmt.reset_communication();
   parts_->pdos.reset(config_.node_id);
+  parts_->heartbeats.reset();
   parts_->faults.clear_delayed();
 }
 
@@ -58,7 +59,7 @@ void EmulatedDrive::step(double dt_s) {
   }
 
   // the controlword is level-triggered (only fault reset needs an edge, seen on write)
-  p.device.evaluate_controlword(p.device.controlword());
+  p.device.evaluate_held_controlword();
 
   // physics and control
   pending_ns_ += std::llround(dt_s * 1e9);
@@ -70,6 +71,10 @@ void EmulatedDrive::step(double dt_s) {
 
   // what is due at the new time
   p.nmt.produce_heartbeat(now_ns_, p.faults.heartbeat_suppressed());
+  if (p.heartbeats.timed_out(now_ns_)) {
+    ++p.link.stats().heartbeat_timeouts;
+    p.device.connection_lost();
+  }
   p.pdos.service_event_timers(p.objects, now_ns_);
   p.faults.release_delayed(now_ns_);
 }
@@ -100,6 +105,8 @@ void EmulatedDrive::handle_frame(const CanFrame& frame) {
     return;
   }
   if (frame.id == static_cast<uint32_t>(can::cob::kSdoRx + id)) p.sdo.handle(frame, p.objects);
+  // the heartbeats of the nodes it consumes (its master's)
+  if (const auto heartbeat = can::decode_heartbeat(frame); heartbeat.ok()) p.heartbeats.heard(heartbeat->node, now_ns_);
 }
 
 void EmulatedDrive::handle_nmt(const can::NmtMessage& message) {
@@ -154,6 +161,9 @@ uint16_t EmulatedDrive::statusword() const { return parts_->device.statusword();
 uint16_t EmulatedDrive::controlword() const { return parts_->device.controlword(); }
 int8_t EmulatedDrive::mode_of_operation() const { return parts_->device.mode(); }
 uint16_t EmulatedDrive::error_code() const { return parts_->device.error_code(); }
+int16_t EmulatedDrive::target_torque_permille() const { return parts_->device.target_torque_permille(); }
+double EmulatedDrive::rated_torque_nm() const { return parts_->device.rated_torque_mnm() * 1e-3; }
+int16_t EmulatedDrive::abort_connection_option() const { return parts_->device.abort_connection_option(); }
 double EmulatedDrive::position_rad() const { return parts_->motor.position_rad(); }
 double EmulatedDrive::velocity_radps() const { return parts_->motor.velocity_radps(); }
 double EmulatedDrive::current_a() const { return parts_->motor.current_a(); }

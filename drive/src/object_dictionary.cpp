@@ -82,6 +82,22 @@ uint32_t set_heartbeat_time(const ObjectOwners& o, uint16_t, uint8_t, uint32_t v
   return 0;
 }
 
+// consumer heartbeat time, sub 1..HeartbeatConsumer::kEntries
+uint32_t consumer_heartbeat(const ObjectOwners& o, uint16_t, uint8_t subindex) {
+  return o.heartbeats.entry(subindex);
+}
+uint32_t set_consumer_heartbeat(const ObjectOwners& o, uint16_t, uint8_t subindex, uint32_t value) {
+  return o.heartbeats.set_entry(subindex, value);
+}
+
+// the abort connection option code: INTEGER16, carried as its 16 bits
+uint32_t abort_connection_option(const ObjectOwners& o, uint16_t, uint8_t) {
+  return static_cast<uint16_t>(o.device.abort_connection_option());
+}
+uint32_t set_abort_connection_option(const ObjectOwners& o, uint16_t, uint8_t, uint32_t value) {
+  return o.device.set_abort_connection_option(static_cast<int16_t>(value)) ? 0 : sdo_abort::kInvalidValue;
+}
+
 // modes of operation (and its display): INTEGER8, carried as its 8 bits
 uint32_t mode(const ObjectOwners& o, uint16_t, uint8_t) { return static_cast<uint8_t>(o.device.mode()); }
 uint32_t set_mode(const ObjectOwners& o, uint16_t, uint8_t, uint32_t value) {
@@ -94,9 +110,17 @@ uint32_t position_actual(const ObjectOwners& o, uint16_t, uint8_t) {
 uint32_t velocity_actual(const ObjectOwners& o, uint16_t, uint8_t) {
   return static_cast<uint32_t>(saturate_int32(o.servo.velocity_estimate_radps() * o.motor.ticks_per_rad()));
 }
-// a DC motor: torque per mille of rated = current per mille of rated
 uint32_t current_actual(const ObjectOwners& o, uint16_t, uint8_t) {
   return static_cast<uint16_t>(saturate_int16(o.motor.current_a() / o.config.rated_current_a * 1e3));
+}
+// a DC motor's torque, k_t x current, per mille of the rated torque 0x6076
+uint32_t torque_actual(const ObjectOwners& o, uint16_t, uint8_t) {
+  const double torque_mnm = o.config.motor.torque_constant_nm_per_a * o.motor.current_a() * 1e3;
+  return static_cast<uint16_t>(saturate_int16(torque_mnm / o.device.rated_torque_mnm() * 1e3));
+}
+// target torque: INTEGER16, carried as its 16 bits
+uint32_t target_torque(const ObjectOwners& o, uint16_t, uint8_t) {
+  return static_cast<uint16_t>(o.device.target_torque_permille());
 }
 uint32_t rated_current(const ObjectOwners& o, uint16_t, uint8_t) {
   return static_cast<uint32_t>(std::lround(o.config.rated_current_a * 1e3));
@@ -141,7 +165,10 @@ namespace inject = drive_od::inject;
 constexpr ObjectEntry kFixedObjects[] = {
     {0x1000, 0, 32, kNoPdo, constant<EmulatedDrive::kDeviceType>},  // device type
     {0x1001, 0, 8, kTpdo, device_value<&D::error_register>},
-    {0x1017, 0, 16, kNoPdo, heartbeat_time, set_heartbeat_time},
+    {can::obj::kConsumerHeartbeatTime, 0, 8, kNoPdo, constant<HeartbeatConsumer::kEntries>},
+    {can::obj::kConsumerHeartbeatTime, 1, 32, kNoPdo, consumer_heartbeat, set_consumer_heartbeat},
+    {can::obj::kConsumerHeartbeatTime, 2, 32, kNoPdo, consumer_heartbeat, set_consumer_heartbeat},
+    {can::obj::kProducerHeartbeatTime, 0, 16, kNoPdo, heartbeat_time, set_heartbeat_time},
     // identity: highest subindex, vendor id, product code, revision, serial number
     {0x1018, 0, 8, kNoPdo, constant<4>},
     {0x1018, 1, 32, kNoPdo, identity<&EmulatedDriveConfig::vendor_id>},
@@ -149,6 +176,7 @@ constexpr ObjectEntry kFixedObjects[] = {
     {0x1018, 3, 32, kNoPdo, identity<&EmulatedDriveConfig::revision>},
     {0x1018, 4, 32, kNoPdo, identity<&EmulatedDriveConfig::serial>},
     // CiA 402
+    {od::kAbortConnectionOptionCode, 0, 16, kNoPdo, abort_connection_option, set_abort_connection_option},
     {od::kErrorCode, 0, 16, kTpdo, device_value<&D::error_code>},
     {od::kControlword, 0, 16, kRpdo, device_value<&D::controlword>, set_device_value<uint16_t, &D::set_controlword>},
     {od::kStatusword, 0, 16, kTpdo, device_value<&D::statusword>},
@@ -160,9 +188,11 @@ constexpr ObjectEntry kFixedObjects[] = {
     {od::kFollowingErrorTimeout, 0, 16, kNoPdo, device_value<&D::following_error_timeout_ms>,
      set_device_value<uint16_t, &D::set_following_error_timeout_ms>},
     {od::kVelocityActualValue, 0, 32, kTpdo, velocity_actual},
+    {od::kTargetTorque, 0, 16, kRpdo, target_torque, set_device_value<int16_t, &D::set_target_torque_permille>},
     {od::kMaxCurrent, 0, 16, kRpdo, device_value<&D::max_current_permille>, set_max_current},
     {od::kMotorRatedCurrent, 0, 32, kNoPdo, rated_current},
-    {od::kTorqueActualValue, 0, 16, kTpdo, current_actual},
+    {od::kMotorRatedTorque, 0, 32, kNoPdo, device_value<&D::rated_torque_mnm>},
+    {od::kTorqueActualValue, 0, 16, kTpdo, torque_actual},
     {od::kCurrentActualValue, 0, 16, kTpdo, current_actual},
     {od::kTargetPosition, 0, 32, kRpdo, device_value<&D::target_ticks>,
      set_device_value<int32_t, &D::set_target_ticks>},

@@ -7,6 +7,7 @@
 
 #include "cia402_device.h"
 #include "fault_injection.h"
+#include "heartbeat_consumer.h"
 #include "motor_model.h"
 #include "nmt_slave.h"
 #include "pdo_engine.h"
@@ -31,6 +32,7 @@ struct ObjectOwners {
   const ServoController& servo;
   const MotorModel& motor;
   FaultInjection& faults;
+  HeartbeatConsumer& heartbeats;
   const int64_t& now_ns;  // the drive's clock (timers restart on some writes)
 };
 

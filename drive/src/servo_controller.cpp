@@ -52,6 +52,13 @@ ServoController::Regulation ServoController::regulate(double measured_rad, doubl
   return {error, command != unsaturated};
 }
 
+bool ServoController::drive_current(double current_a, double current_limit_a, double measured_rad) {
+  hold_at(measured_rad);
+  position_.integral_a = 0;
+  current_.ref_a = std::clamp(current_a, -current_limit_a, current_limit_a);
+  return current_.ref_a != current_a;
+}
+
 double ServoController::current_loop(double current_a) {
   const EmulatedControllerParams& c = gains_;
   const double error = current_.ref_a - current_a;

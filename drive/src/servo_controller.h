@@ -33,6 +33,9 @@ class ServoController {
   };
   /// The PID on the reference: sets the current reference within +-current_limit_a.
   Regulation regulate(double measured_rad, double current_limit_a);
+  /// Torque mode: the current reference is `current_a` within +-current_limit_a (true: clamped);
+  /// the position loop rests at the link, nothing integrated.
+  bool drive_current(double current_a, double current_limit_a, double measured_rad);
 
   // --- current loop, every substep ---
   /// The bridge voltage that drives the measured current towards the reference.

@@ -47,13 +47,20 @@ inline std::optional<Feedback> decode_feedback(const CanFrame& frame) {
 class DriveRig {
  public:
   explicit DriveRig(const EmulatedDriveConfig& config = {})
-      : master_(bus_.open("master")), drive_ep_(bus_.open("drive")), drive_(*drive_ep_, config) {}
+      : master_(bus_.open("master")),
+        drive_ep_(bus_.open("drive")),
+        drive_(std::make_unique<EmulatedDrive>(*drive_ep_, config)) {}
+  /// The drive turns `plant` (which must outlive the rig).
+  DriveRig(const EmulatedDriveConfig& config, DrivePlant& plant)
+      : master_(bus_.open("master")),
+        drive_ep_(bus_.open("drive")),
+        drive_(std::make_unique<EmulatedDrive>(*drive_ep_, config, plant)) {}
 
   VirtualCanBus& bus() { return bus_; }
   VirtualCanEndpoint& master() { return *master_; }
-  EmulatedDrive& drive() { return drive_; }
-  const EmulatedDrive& drive() const { return drive_; }
-  NodeId node() const { return drive_.node_id(); }
+  EmulatedDrive& drive() { return *drive_; }
+  const EmulatedDrive& drive() const { return *drive_; }
+  NodeId node() const { return drive_->node_id(); }
   /// Every frame the master has received, in bus order.
   const std::vector<CanFrame>& received() const { return received_; }
   void clear_received() { received_.clear(); }
@@ -62,7 +69,7 @@ class DriveRig {
   void run(double dt_s, double step_s = 1e-3) {
     while (dt_s > 1e-12) {
       const double h = dt_s < step_s ? dt_s : step_s;
-      drive_.step(h);
+      drive_->step(h);
       drain();
       dt_s -= h;
     }
@@ -138,10 +145,10 @@ class DriveRig {
   /// Walks to operation enabled from wherever the drive is (at most 20 cycles).
   int enable(double period_s = 4e-3) {
     uint16_t cw = 0;
-    uint16_t statusword = drive_.statusword();
+    uint16_t statusword = drive_->statusword();
     for (int i = 1; i <= 20; ++i) {
       cw = cia402::next_controlword(statusword, cw);
-      const auto fb = cycle(cw, drive_.position_ticks(), period_s);
+      const auto fb = cycle(cw, drive_->position_ticks(), period_s);
       if (!fb) return -1;
       statusword = fb->statusword;
       if (cia402::state_from_statusword(statusword) == cia402::State::kOperationEnabled) return i;
@@ -155,7 +162,7 @@ class DriveRig {
   VirtualCanBus bus_;
   std::unique_ptr<VirtualCanEndpoint> master_;
   std::unique_ptr<VirtualCanEndpoint> drive_ep_;
-  EmulatedDrive drive_;
+  std::unique_ptr<EmulatedDrive> drive_;
   std::vector<CanFrame> received_;
   Feedback last_feedback_;
 };

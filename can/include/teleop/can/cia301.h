@@ -40,6 +40,19 @@ constexpr uint16_t kSdoRx = 0x600;  // client -> server (requests)
 constexpr uint16_t kHeartbeat = 0x700;
 }  // namespace cob
 
+/// Communication objects of CiA 301 that masters and drives here write or serve.
+namespace obj {
+constexpr uint16_t kCommunicationCyclePeriod = 0x1006;  // UNSIGNED32 [us], the SYNC period
+constexpr uint16_t kConsumerHeartbeatTime = 0x1016;     // sub n: UNSIGNED32 (node << 16) | ms
+constexpr uint16_t kProducerHeartbeatTime = 0x1017;     // UNSIGNED16 [ms]
+}  // namespace obj
+
+/// An entry of the consumer heartbeat time (0x1016 sub n): watch `node`'s heartbeat, `ms` at most
+/// between two (0 or node 0: the entry is off).
+constexpr uint32_t consumer_heartbeat_entry(uint8_t node, uint16_t ms) {
+  return (static_cast<uint32_t>(node) << 16) | ms;
+}
+
 /// Default COB-ID of TPDO n (1..4) of a node: 0x180/0x280/0x380/0x480 + node.
 constexpr uint16_t tpdo_cob_id(unsigned n, NodeId node) { return static_cast<uint16_t>(0x080 + 0x100 * n + node); }
 /// Default COB-ID of RPDO n (1..4) of a node: 0x200/0x300/0x400/0x500 + node.

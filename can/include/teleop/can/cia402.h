@@ -1,5 +1,5 @@
 #pragma once
-// CiA 402 (drives and motion control): the objects of a position drive, the controlword commands,
+// CiA 402 (drives and motion control): the objects of a position or torque drive, the controlword commands,
 // the statusword state coding, the device state machine (PDS FSA) as a pure function, and a
 // master-side helper that walks a drive to "operation enabled" one controlword at a time.
 // Everything here is constexpr-friendly plain code: real-time safe.
@@ -10,6 +10,7 @@ namespace teleop::can::cia402 {
 
 /// Object indices (subindex 0 unless noted).
 namespace od {
+constexpr uint16_t kAbortConnectionOptionCode = 0x6007;  // INTEGER16: the reaction to a lost master
 constexpr uint16_t kErrorCode = 0x603F;                // UNSIGNED16, last EMCY error code
 constexpr uint16_t kControlword = 0x6040;              // UNSIGNED16, rw, RPDO
 constexpr uint16_t kStatusword = 0x6041;               // UNSIGNED16, ro, TPDO
@@ -19,8 +20,10 @@ constexpr uint16_t kPositionActualValue = 0x6064;      // INTEGER32 [ticks], ro,
 constexpr uint16_t kFollowingErrorWindow = 0x6065;     // UNSIGNED32 [ticks], 0xFFFFFFFF = off
 constexpr uint16_t kFollowingErrorTimeout = 0x6066;    // UNSIGNED16 [ms]
 constexpr uint16_t kVelocityActualValue = 0x606C;      // INTEGER32 [ticks/s], ro, TPDO
+constexpr uint16_t kTargetTorque = 0x6071;             // INTEGER16 [per mille of rated torque], rw, RPDO
 constexpr uint16_t kMaxCurrent = 0x6073;               // UNSIGNED16 [per mille of rated current]
 constexpr uint16_t kMotorRatedCurrent = 0x6075;        // UNSIGNED32 [mA]
+constexpr uint16_t kMotorRatedTorque = 0x6076;         // UNSIGNED32 [mN m], the unit of 0x6071 / 0x6077
 constexpr uint16_t kTorqueActualValue = 0x6077;        // INTEGER16 [per mille of rated torque], TPDO
 constexpr uint16_t kCurrentActualValue = 0x6078;       // INTEGER16 [per mille of rated current], TPDO
 constexpr uint16_t kTargetPosition = 0x607A;           // INTEGER32 [ticks], rw, RPDO
@@ -30,6 +33,16 @@ constexpr uint16_t kSoftwarePositionLimit = 0x607D;    // sub 1 min, sub 2 max: 
 /// Modes of operation (0x6060 / 0x6061).
 constexpr int8_t kModeNone = 0;
 constexpr int8_t kModeCyclicSynchronousPosition = 8;
+constexpr int8_t kModeCyclicSynchronousTorque = 10;
+
+/// Abort connection option codes (0x6007): what the drive does when it loses its master (a
+/// heartbeat it consumes times out). 4 and up, and negative codes, are the manufacturer's.
+namespace abort_connection {
+constexpr int16_t kNoAction = 0;
+constexpr int16_t kFault = 1;           // fault signal: EMCY, fault reaction, fault
+constexpr int16_t kDisableVoltage = 2;  // power off at once (transition 9/10/12)
+constexpr int16_t kQuickStop = 3;       // quick stop (transition 11): brake and hold
+}  // namespace abort_connection
 
 /// Controlword bits (0x6040).
 namespace cw {

@@ -2,12 +2,14 @@
 // One emulated CANopen servo drive (the hand's motor controllers, an arm's joint drives),
 // speaking CiA 301 / CiA 402 on a CanBus endpoint, for tests and the HIL emulators:
 //   - NMT slave: boot-up message, initialising -> pre-operational -> operational / stopped,
-//     reset node / reset communication; heartbeat producer (0x1017)
+//     reset node / reset communication; heartbeat producer (0x1017) and consumer (0x1016, two
+//     entries: its master's heartbeat lost -> EMCY 0x8130 and the reaction 0x6007 selects)
 //   - SDO server, expedited transfers, with abort codes for every refused access
 //   - CiA 402 state machine driven by the controlword (RPDO or SDO), statusword, EMCY on faults
-//   - cyclic synchronous position mode (0x6060 = 8): RPDO targets latched at SYNC, TPDOs
-//     (position actual, current actual, statusword by default) sampled at SYNC; RPDO and TPDO
-//     mappings configurable over SDO, including dummy entries (several nodes sharing one RPDO)
+//   - cyclic synchronous position (0x6060 = 8) and torque (10) modes: RPDO targets latched at
+//     SYNC, TPDOs (position actual, current actual, statusword by default) sampled at SYNC; RPDO
+//     and TPDO mappings configurable over SDO, including dummy entries (several nodes sharing
+//     one RPDO)
 //   - inside: cascaded position PID (anti-windup, reference step limit) -> current PI
 //     (anti-windup) -> PWM -> a DC motor with gearbox turning its plant (DrivePlant): by
 //     default its own finger link between hard stops, or a channel of a shared simulation such
@@ -20,7 +22,8 @@
 // real-time safe (no allocation, no exceptions) after construction.
 //
 // Object dictionary (all subindex 0 unless noted):
-//   0x1000 device type (ro), 0x1001 error register (ro), 0x1017 heartbeat ms (rw),
+//   0x1000 device type (ro), 0x1001 error register (ro), 0x1016 consumer heartbeat sub 1..2
+//   ((node << 16) | ms, rw), 0x1017 heartbeat ms (rw),
 //   0x1018 identity sub 1..4 (ro), 0x1400/0x1401 RPDO communication (sub 1 COB-ID, 2 type),
 //   0x1600/0x1601 RPDO mapping, 0x1800/0x1801 TPDO communication (sub 1, 2, 3 inhibit,
 //   5 event timer ms), 0x1A00/0x1A01 TPDO mapping, the CiA 402 objects of cia402::od, and the
@@ -28,19 +31,25 @@
 // Defaults: RPDO1 0x200+id [0x6040, 0x607A] synchronous; TPDO1 0x180+id [0x6064, 0x6078,
 // 0x6041] on every SYNC; RPDO2 / TPDO2 disabled (TPDO2 mapped [0x606C, 0x603F]).
 // Modes of operation start at 0 (no mode: the drive holds its position when enabled); the
-// master sets 8. The master should send the actual position as target before enabling: the
-// drive starts from the actual position and ramps towards the target at the reference limit.
+// master sets 8 or 10. In CSP the master should send the actual position as target before
+// enabling: the drive starts from the actual position and ramps towards the target at the
+// reference limit. In CST the target torque 0x6071 is the motor's, per mille of the rated torque
+// 0x6076 (k_t * rated current, mN m): the current loop drives target / k_t within 0x6073 (bit 11
+// "internal limit" when clamped); what reaches the plant is that torque times gear ratio and
+// efficiency.
 // Quick stop brakes with the position loop and holds (like quick stop option code 6): enable
 // operation resumes (transition 16), disable voltage leaves (12). Following error: the link
-// farther than 0x6065 from the reference for 0x6066 ms -> fault, EMCY 0x8611. The NMT state
-// does not act on the CiA 402 state (no communication-error reaction: object 0x6007 is not emulated);
-// a reset keeps the link where it is (an absolute encoder). Torque actual (0x6077) equals
-// current actual (0x6078): a DC motor, rated torque = k_t * rated current.
+// farther than 0x6065 from the reference for 0x6066 ms (CSP) -> fault, EMCY 0x8611. A lost
+// master (a consumed heartbeat silent longer than its time; the watch starts with its first
+// heartbeat) acts through 0x6007 (default from the config: 0, no action; 1 fault, 2 disable
+// voltage, 3 quick stop), and the controlword it last wrote is no longer obeyed until it writes
+// one again. The NMT state itself does not act on the CiA 402 state; a reset keeps the link where
+// it is (an absolute encoder). Torque actual (0x6077) is k_t * current per mille of 0x6076.
 //
 // Inside (drive/src/), one part per responsibility, composed here: the object dictionary
 // (one table), the SDO server, the PDO engine, the NMT slave, the CiA 402 device side, the
-// servo controller, the motor model (winding, gearbox, encoder), the own link plant and fault
-// injection.
+// servo controller, the motor model (winding, gearbox, encoder), the own link plant, the
+// heartbeat consumer and fault injection.
 
 #include <array>
 #include <cstdint>
@@ -105,6 +114,7 @@ struct EmulatedDriveConfig {
   double following_error_window_rad = 0.2;    // default of 0x6065
   uint16_t following_error_timeout_ms = 100;  // default of 0x6066
   double fault_reaction_time_s = 0.002;       // fault reaction active -> fault
+  int16_t abort_connection_option = 0;        // default of 0x6007 (can::cia402::abort_connection)
 };
 
 struct EmulatedDriveStats {
@@ -121,6 +131,7 @@ struct EmulatedDriveStats {
   uint64_t tpdos_dropped = 0;  // by fault injection or a full delay queue
   uint64_t emcys_sent = 0;
   uint64_t heartbeats_sent = 0;
+  uint64_t heartbeat_timeouts = 0;  // of a node the drive consumes (0x1016): its master lost
 };
 
 class EmulatedDrive {
@@ -153,6 +164,10 @@ class EmulatedDrive {
   uint16_t controlword() const;
   int8_t mode_of_operation() const;
   uint16_t error_code() const;
+  /// 0x6071 [per mille of rated torque], 0x6076 [N m] (motor side), 0x6007.
+  int16_t target_torque_permille() const;
+  double rated_torque_nm() const;
+  int16_t abort_connection_option() const;
   double time_s() const { return static_cast<double>(now_ns_) * 1e-9; }
   /// True plant angle [rad] (output side) and velocity, true motor current.
   double position_rad() const;
