@@ -1,0 +1,83 @@
+#include "teleop/robot/cia402_axis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace teleop::robot {
+
+namespace cia402 = can::cia402;
+using cia402::State;
+
+namespace {
+
+void require(bool ok, const char* key, const char* what) {
+  if (!ok) throw std::invalid_argument(std::string("CiA 402 axis: ") + key + " " + what);
+}
+
+}  // namespace
+
+Cia402Axis::Cia402Axis(const Cia402AxisConfig& config) : config_(config) {
+  require(std::isfinite(config.gear_ratio) && config.gear_ratio > 0, "gear_ratio", "must be > 0");
+  require(config.gear_efficiency > 0 && config.gear_efficiency <= 1, "gear_efficiency", "must be in (0, 1]");
+  require(std::isfinite(config.encoder_ticks_per_rev) && config.encoder_ticks_per_rev >= 1, "encoder_ticks_per_rev",
+          "must be >= 1");
+  require(std::isfinite(config.rated_torque_nm) && config.rated_torque_nm > 0, "rated_torque_nm", "must be > 0");
+  require(std::isfinite(config.offset_rad), "offset_rad", "must be finite");
+  require(std::isfinite(config.max_torque_nm) && config.max_torque_nm > 0, "max_torque_nm", "must be > 0");
+  ticks_per_rad_ = config.encoder_ticks_per_rev * config.gear_ratio / (2.0 * M_PI);
+  nm_per_permille_ = 1e-3 * config.rated_torque_nm * config.gear_ratio * config.gear_efficiency;
+}
+
+void Cia402Axis::take(const AxisFeedback& feedback) {
+  feedback_ = feedback;
+  const State s = state();
+  if (s == State::kOperationEnabled) {
+    was_enabled_ = true;
+  } else if (was_enabled_) {
+    failed_ = true;  // a fault found before the first enable is the walk's to reset
+  }
+}
+
+double Cia402Axis::position_rad() const {
+  return config_.offset_rad + sign() * feedback_.position_ticks / ticks_per_rad_;
+}
+double Cia402Axis::velocity_radps() const { return sign() * feedback_.velocity_ticks_per_s / ticks_per_rad_; }
+double Cia402Axis::torque_nm() const { return sign() * feedback_.torque_permille * nm_per_permille_; }
+
+bool Cia402Axis::failed() const { return failed_; }
+
+int16_t Cia402Axis::torque_permille(double torque_nm, bool& clamped) const {
+  const double limited = std::clamp(torque_nm, -config_.max_torque_nm, config_.max_torque_nm);
+  const double permille = std::round(sign() * limited / nm_per_permille_);
+  constexpr double kMax = std::numeric_limits<int16_t>::max();
+  clamped = limited != torque_nm || std::fabs(permille) > kMax;
+  return static_cast<int16_t>(std::clamp(permille, -kMax, kMax));
+}
+
+AxisCommand Cia402Axis::command(double torque_nm) {
+  if (failed_) return quick_stop();
+  if (!enabled()) {
+    controlword_ = cia402::next_controlword(feedback_.statusword, controlword_);
+    return {controlword_, 0};
+  }
+  bool clamped = false;
+  const int16_t permille = torque_permille(torque_nm, clamped);
+  if (clamped) ++clamped_;
+  controlword_ = cia402::controlword_for(cia402::Command::kEnableOperation);
+  return {controlword_, permille};
+}
+
+AxisCommand Cia402Axis::quick_stop() {
+  controlword_ = cia402::controlword_for(cia402::Command::kQuickStop);
+  return {controlword_, 0};
+}
+
+void Cia402Axis::reset() {
+  failed_ = false;
+  was_enabled_ = false;
+}
+
+}  // namespace teleop::robot
