@@ -27,11 +27,20 @@ Cia402Axis::Cia402Axis(const Cia402AxisConfig& config) : config_(config) {
   require(std::isfinite(config.rated_torque_nm) && config.rated_torque_nm > 0, "rated_torque_nm", "must be > 0");
   require(std::isfinite(config.offset_rad), "offset_rad", "must be finite");
   require(std::isfinite(config.max_torque_nm) && config.max_torque_nm > 0, "max_torque_nm", "must be > 0");
+  require(std::isfinite(config.velocity_filter_hz) && config.velocity_filter_hz > 0, "velocity_filter_hz", "must be > 0");
   ticks_per_rad_ = config.encoder_ticks_per_rev * config.gear_ratio / (2.0 * M_PI);
   nm_per_permille_ = 1e-3 * config.rated_torque_nm * config.gear_ratio * config.gear_efficiency;
 }
 
-void Cia402Axis::take(const AxisFeedback& feedback) {
+void Cia402Axis::take(const AxisFeedback& feedback, double interval_s) {
+  if (feedback.velocity_measured) {
+    velocity_radps_ = sign() * feedback.velocity_ticks_per_s / ticks_per_rad_;
+  } else if (interval_s > 0) {
+    // the sampled positions' difference, through a first-order low-pass (exact for the interval)
+    const double raw = sign() * (feedback.position_ticks - feedback_.position_ticks) / ticks_per_rad_ / interval_s;
+    const double alpha = 1.0 - std::exp(-2.0 * M_PI * config_.velocity_filter_hz * interval_s);
+    velocity_radps_ += alpha * (raw - velocity_radps_);
+  }
   feedback_ = feedback;
   const State s = state();
   if (s == State::kOperationEnabled) {
@@ -44,7 +53,7 @@ void Cia402Axis::take(const AxisFeedback& feedback) {
 double Cia402Axis::position_rad() const {
   return config_.offset_rad + sign() * feedback_.position_ticks / ticks_per_rad_;
 }
-double Cia402Axis::velocity_radps() const { return sign() * feedback_.velocity_ticks_per_s / ticks_per_rad_; }
+double Cia402Axis::velocity_radps() const { return velocity_radps_; }
 double Cia402Axis::torque_nm() const { return sign() * feedback_.torque_permille * nm_per_permille_; }
 
 bool Cia402Axis::failed() const { return failed_; }

@@ -28,18 +28,30 @@ Cia402AxisConfig joint() {
 TEST(Cia402Axis, TurnsTicksAndPerMilleIntoJointUnits) {
   Cia402Axis axis(joint());
   const double ticks_per_rad = 4096.0 * 100.0 / (2 * M_PI);
-  axis.take({0, static_cast<int32_t>(std::lround(1.0 * ticks_per_rad)), static_cast<int32_t>(std::lround(-2.0 * ticks_per_rad)),
-             500});
+  axis.take({0, static_cast<int32_t>(std::lround(1.0 * ticks_per_rad)), 500, true,
+             static_cast<int32_t>(std::lround(-2.0 * ticks_per_rad))});
   EXPECT_NEAR(axis.position_rad(), 1.25, 1e-5);  // offset + 1 rad
   EXPECT_NEAR(axis.velocity_radps(), -2.0, 1e-5);
   EXPECT_NEAR(axis.torque_nm(), 0.5 * 0.5 * 100 * 0.9, 1e-9);  // 500 per mille of 45 N m
+}
+
+TEST(Cia402Axis, DifferentiatesPositionsWhereTheBusCarriesNoVelocity) {
+  Cia402Axis axis(joint());
+  const double ticks_per_rad = 4096.0 * 100.0 / (2 * M_PI);
+  axis.take({0, 0, 0});
+  EXPECT_EQ(axis.velocity_radps(), 0.0);
+  // 0.5 rad/s sampled every 1 ms: the filter (200 Hz) settles within ~5 ms
+  for (int k = 1; k <= 20; ++k) axis.take({0, static_cast<int32_t>(std::lround(0.5 * k * 1e-3 * ticks_per_rad)), 0}, 1e-3);
+  EXPECT_NEAR(axis.velocity_radps(), 0.5, 0.01);
+  axis.take({0, static_cast<int32_t>(std::lround(0.5 * 20 * 1e-3 * ticks_per_rad)), 0}, 0.0);  // the same sample
+  EXPECT_NEAR(axis.velocity_radps(), 0.5, 0.01);
 }
 
 TEST(Cia402Axis, AnInvertedJointTurnsAgainstTheMotor) {
   Cia402AxisConfig c = joint();
   c.inverted = true;
   Cia402Axis axis(c);
-  axis.take({0, 65190, 65190, 100});
+  axis.take({0, 65190, 100, true, 65190});
   EXPECT_NEAR(axis.position_rad(), 0.25 - 1.0, 1e-4);
   EXPECT_LT(axis.velocity_radps(), 0);
   EXPECT_LT(axis.torque_nm(), 0);
@@ -68,7 +80,7 @@ TEST(Cia402Axis, ClampsTorqueToTheJointsLimitAndCountsIt) {
 struct DriveStateMachine {
   State state = State::kSwitchOnDisabled;
   uint16_t previous = 0;
-  AxisFeedback feedback() const { return {cia402::statusword_for(state), 0, 0, 0}; }
+  AxisFeedback feedback() const { return {cia402::statusword_for(state), 0, 0}; }
   void obey(uint16_t controlword) {
     state = cia402::next_state(state, cia402::command_from_controlword(controlword, previous));
     previous = controlword;

@@ -20,14 +20,17 @@ struct Cia402AxisConfig {
   double offset_rad = 0.0;             // the joint angle at encoder count 0 (absolute encoder)
   bool inverted = false;               // the joint turns against the motor's positive direction
   double max_torque_nm = 0.0;          // joint side: larger commands are clamped (and counted)
+  double velocity_filter_hz = 200.0;   // low-pass of the rate differentiated from positions
 };
 
-/// The drive's process data the master reads (TPDOs): 0x6041, 0x6064, 0x606C, 0x6077.
+/// The drive's process data the master reads (TPDOs): 0x6041, 0x6064, 0x6077, and 0x606C where
+/// the bus has room for it (else the axis differentiates the positions).
 struct AxisFeedback {
   uint16_t statusword = 0;
   int32_t position_ticks = 0;
-  int32_t velocity_ticks_per_s = 0;
   int16_t torque_permille = 0;
+  bool velocity_measured = false;
+  int32_t velocity_ticks_per_s = 0;
 };
 
 /// The drive's process data the master writes (RPDO): 0x6040, 0x6071.
@@ -41,8 +44,9 @@ class Cia402Axis {
   /// Throws std::invalid_argument naming the first value that is not physical.
   explicit Cia402Axis(const Cia402AxisConfig& config);
 
-  /// The drive's newest feedback.
-  void take(const AxisFeedback& feedback);
+  /// The drive's newest feedback, sampled `interval_s` after the one before (its SYNC period;
+  /// 0 = the first, or the same sample again: no new rate).
+  void take(const AxisFeedback& feedback, double interval_s = 0.0);
 
   /// Joint angle [rad], rate [rad/s] and the drive's torque at the joint [N m], from the feedback.
   double position_rad() const;
@@ -77,6 +81,7 @@ class Cia402Axis {
   double ticks_per_rad_;        // joint radians to motor encoder ticks
   double nm_per_permille_;      // one per mille of the rated torque, at the joint
   AxisFeedback feedback_;
+  double velocity_radps_ = 0.0;  // measured, or differentiated and filtered
   uint16_t controlword_ = 0;
   bool was_enabled_ = false;
   bool failed_ = false;
