@@ -98,6 +98,15 @@ uint32_t set_abort_connection_option(const ObjectOwners& o, uint16_t, uint8_t, u
   return o.device.set_abort_connection_option(static_cast<int16_t>(value)) ? 0 : sdo_abort::kInvalidValue;
 }
 
+// quick stop option code: the drive brakes with its position loop and stays in quick stop active
+// (code 6), which is all it can do; writing that is accepted, anything else refused
+uint32_t quick_stop_option(const ObjectOwners&, uint16_t, uint8_t) {
+  return static_cast<uint16_t>(can::cia402::kQuickStopRampAndHold);
+}
+uint32_t set_quick_stop_option(const ObjectOwners&, uint16_t, uint8_t, uint32_t value) {
+  return static_cast<int16_t>(value) == can::cia402::kQuickStopRampAndHold ? 0 : sdo_abort::kInvalidValue;
+}
+
 // modes of operation (and its display): INTEGER8, carried as its 8 bits
 uint32_t mode(const ObjectOwners& o, uint16_t, uint8_t) { return static_cast<uint8_t>(o.device.mode()); }
 uint32_t set_mode(const ObjectOwners& o, uint16_t, uint8_t, uint32_t value) {
@@ -182,6 +191,7 @@ constexpr ObjectEntry kFixedObjects[] = {
     {od::kStatusword, 0, 16, kTpdo, device_value<&D::statusword>},
     {od::kModesOfOperation, 0, 8, kRpdo, mode, set_mode},
     {od::kModesOfOperationDisplay, 0, 8, kTpdo, mode},
+    {od::kQuickStopOptionCode, 0, 16, kNoPdo, quick_stop_option, set_quick_stop_option},
     {od::kPositionActualValue, 0, 32, kTpdo, position_actual},
     {od::kFollowingErrorWindow, 0, 32, kNoPdo, device_value<&D::following_error_window_ticks>,
      set_device_value<uint32_t, &D::set_following_error_window_ticks>},

@@ -141,6 +141,8 @@ void CanopenArmBus::configure_drive(SdoClient& sdo, const CanopenDriveConfig& dr
   sdo.write(n, 0x1401, 1, kPdoInvalid | can::rpdo_cob_id(2, n), 4);  // nothing else on the bus
   sdo.write(n, 0x1801, 1, kPdoInvalid | can::tpdo_cob_id(2, n), 4);
   sdo.write(n, od::kModesOfOperation, 0, static_cast<uint8_t>(cia402::kModeCyclicSynchronousTorque), 1);
+  // a quick stop brakes and stays in quick stop active: the master's hold, ended without power-off
+  sdo.write(n, od::kQuickStopOptionCode, 0, static_cast<uint16_t>(cia402::kQuickStopRampAndHold), 2);
   sdo.write(n, can::obj::kProducerHeartbeatTime, 0, config_.drive_heartbeat_ms, 2);
   sdo.write(n, can::obj::kConsumerHeartbeatTime, 1,
             can::consumer_heartbeat_entry(config_.master_node, config_.master_lost_after_ms), 4);
@@ -222,6 +224,12 @@ void CanopenArmBus::receive(int64_t now_ns) {
   }
 }
 
+int64_t CanopenArmBus::feedback_sampled_ns() const {
+  const uint64_t oldest = *std::min_element(feedback_seen_.begin(), feedback_seen_.end());
+  if (oldest == 0 || stats_.syncs - oldest >= sync_ns_.size()) return 0;
+  return sync_ns_[oldest % sync_ns_.size()];
+}
+
 bool CanopenArmBus::feedback_complete() const {
   return std::all_of(feedback_seen_.begin(), feedback_seen_.end(), [&](uint64_t seen) { return seen == stats_.syncs; });
 }
@@ -242,6 +250,7 @@ void CanopenArmBus::send(int64_t now_ns) {
   }
   put(can::encode_sync());
   ++stats_.syncs;
+  sync_ns_[stats_.syncs % sync_ns_.size()] = now_ns;
   if (now_ns >= next_heartbeat_ns_) {
     put(can::encode_heartbeat(config_.master_node, can::NmtState::kOperational));
     next_heartbeat_ns_ = std::max(next_heartbeat_ns_ + int64_t{config_.master_heartbeat_ms} * 1'000'000, now_ns);

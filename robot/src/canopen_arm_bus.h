@@ -11,6 +11,7 @@
 // The joint rate is differentiated from the positions (the bus has no room for 0x606C at 1 kHz).
 // receive() and send() are real-time safe: no allocation, no waiting.
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -87,6 +88,10 @@ class CanopenArmBus {
   void command(size_t k, const AxisCommand& command) { commands_[k] = command; }
   /// Every drive's feedback of the last SYNC has arrived.
   bool feedback_complete() const;
+  /// When the SYNC was sent that the oldest of the drives' newest feedback answers (the time the
+  /// arm's state was sampled, on the clock send() was given); 0 before any or when it is older
+  /// than the last 16 SYNCs.
+  int64_t feedback_sampled_ns() const;
   const BusFaultInfo& fault() const { return fault_; }
   const CanopenBusStats& stats() const { return stats_; }
   const CanopenBusConfig& config() const { return config_; }
@@ -105,6 +110,7 @@ class CanopenArmBus {
   std::vector<AxisCommand> commands_;
   std::vector<int64_t> last_heartbeat_ns_;  // per drive; 0 = none yet
   std::vector<uint64_t> feedback_seen_;     // per drive: the SYNC count its TPDO last answered
+  std::array<int64_t, 16> sync_ns_{};       // when SYNC n went out, at n % 16
   BusFaultInfo fault_;
   CanopenBusStats stats_;
   int64_t next_heartbeat_ns_ = 0;

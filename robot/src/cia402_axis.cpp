@@ -45,7 +45,9 @@ void Cia402Axis::take(const AxisFeedback& feedback, double interval_s) {
   const State s = state();
   if (s == State::kOperationEnabled) {
     was_enabled_ = true;
-  } else if (was_enabled_) {
+    // the quick stop is over once the drive shows enabled after the enable operation that ended it
+    if (resume_sent_) quick_stop_asked_ = resume_sent_ = false;
+  } else if (was_enabled_ && !(quick_stop_asked_ && s == State::kQuickStopActive)) {
     failed_ = true;  // a fault found before the first enable is the walk's to reset
   }
 }
@@ -67,8 +69,13 @@ int16_t Cia402Axis::torque_permille(double torque_nm, bool& clamped) const {
 }
 
 AxisCommand Cia402Axis::command(double torque_nm) {
-  if (failed_) return quick_stop();
-  if (!enabled()) {
+  if (failed_) {
+    controlword_ = cia402::controlword_for(cia402::Command::kQuickStop);
+    return {controlword_, 0};
+  }
+  // the walk, unless enabled or holding in the quick stop asked for (a feedback one SYNC old may
+  // still show enabled after the quick stop went out: the drive is taken at its word next cycle)
+  if (!enabled() && !quick_stop_asked_) {
     controlword_ = cia402::next_controlword(feedback_.statusword, controlword_);
     return {controlword_, 0};
   }
@@ -76,10 +83,13 @@ AxisCommand Cia402Axis::command(double torque_nm) {
   const int16_t permille = torque_permille(torque_nm, clamped);
   if (clamped) ++clamped_;
   controlword_ = cia402::controlword_for(cia402::Command::kEnableOperation);
+  if (quick_stop_asked_) resume_sent_ = true;
   return {controlword_, permille};
 }
 
 AxisCommand Cia402Axis::quick_stop() {
+  if (was_enabled_) quick_stop_asked_ = true;
+  resume_sent_ = false;
   controlword_ = cia402::controlword_for(cia402::Command::kQuickStop);
   return {controlword_, 0};
 }
@@ -87,6 +97,7 @@ AxisCommand Cia402Axis::quick_stop() {
 void Cia402Axis::reset() {
   failed_ = false;
   was_enabled_ = false;
+  quick_stop_asked_ = resume_sent_ = false;
 }
 
 }  // namespace teleop::robot

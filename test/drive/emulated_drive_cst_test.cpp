@@ -157,6 +157,10 @@ TEST(EmulatedDriveTorque, RefusesWhatItCannotDo) {
   EXPECT_EQ(abort_of(rig.sdo_write(od::kAbortConnectionOptionCode, 0, 4, 2)), sdo_abort::kInvalidValue);
   EXPECT_EQ(abort_of(rig.sdo_write(od::kAbortConnectionOptionCode, 0, 0xFFFF, 2)), sdo_abort::kInvalidValue);
   EXPECT_EQ(abort_of(rig.sdo_write(od::kMotorRatedTorque, 0, 20, 4)), sdo_abort::kReadOnly);
+  // its quick stop brakes and holds in quick stop active (code 6): that, and only that, is accepted
+  EXPECT_EQ(abort_of(rig.sdo_write(od::kQuickStopOptionCode, 0, 2, 2)), sdo_abort::kInvalidValue);
+  rig.write(od::kQuickStopOptionCode, 0, cia402::kQuickStopRampAndHold, 2);
+  EXPECT_EQ(rig.sdo_read(od::kQuickStopOptionCode, 0)->data, 6u);
   // one node watched twice
   rig.write(obj::kConsumerHeartbeatTime, 1, consumer_heartbeat_entry(kMaster, 50), 4);
   EXPECT_EQ(abort_of(rig.sdo_write(obj::kConsumerHeartbeatTime, 2, consumer_heartbeat_entry(kMaster, 80), 4)),

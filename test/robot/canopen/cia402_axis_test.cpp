@@ -148,6 +148,34 @@ TEST(Cia402Axis, LeavingOperationEnabledUnaskedIsAFailureThatHoldsUntilReset) {
   }
 }
 
+TEST(Cia402Axis, AQuickStopTheMasterAskedForHoldsAndResumesWithoutAFailure) {
+  Cia402Axis axis(joint());
+  DriveStateMachine drive;
+  for (int i = 0; i < 10 && !axis.enabled(); ++i) {
+    axis.take(drive.feedback());
+    drive.obey(axis.command(0.0).controlword);
+  }
+  ASSERT_TRUE(axis.enabled());
+  drive.obey(axis.quick_stop().controlword);
+  // the feedback of the cycle before still says enabled: the axis neither walks nor fails
+  axis.take({cia402::statusword_for(State::kOperationEnabled), 0, 0});
+  AxisCommand c = axis.command(9.0);
+  EXPECT_EQ(c.controlword, 0x000F);  // resume at once: transition 16
+  EXPECT_EQ(c.target_torque_permille, 200);
+  // the drive showed the quick stop one SYNC late: still not a failure
+  axis.take({cia402::statusword_for(State::kQuickStopActive), 0, 0});
+  EXPECT_FALSE(axis.failed());
+  EXPECT_TRUE(axis.holding());
+  drive.obey(axis.command(9.0).controlword);
+  EXPECT_EQ(drive.state, State::kOperationEnabled);
+  axis.take(drive.feedback());
+  EXPECT_FALSE(axis.holding());
+  EXPECT_FALSE(axis.failed());
+  // and a quick stop the master did not ask for, later, is one
+  axis.take({cia402::statusword_for(State::kQuickStopActive), 0, 0});
+  EXPECT_TRUE(axis.failed());
+}
+
 TEST(Cia402Axis, RefusesAConfigurationThatIsNotPhysical) {
   auto with = [](auto change) {
     Cia402AxisConfig c = joint();

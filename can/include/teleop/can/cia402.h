@@ -27,6 +27,7 @@ constexpr uint16_t kMotorRatedTorque = 0x6076;         // UNSIGNED32 [mN m], the
 constexpr uint16_t kTorqueActualValue = 0x6077;        // INTEGER16 [per mille of rated torque], TPDO
 constexpr uint16_t kCurrentActualValue = 0x6078;       // INTEGER16 [per mille of rated current], TPDO
 constexpr uint16_t kTargetPosition = 0x607A;           // INTEGER32 [ticks], rw, RPDO
+constexpr uint16_t kQuickStopOptionCode = 0x605A;      // INTEGER16: how quick stop brakes, where it ends
 constexpr uint16_t kSoftwarePositionLimit = 0x607D;    // sub 1 min, sub 2 max: INTEGER32 [ticks]
 }  // namespace od
 
@@ -34,6 +35,10 @@ constexpr uint16_t kSoftwarePositionLimit = 0x607D;    // sub 1 min, sub 2 max: 
 constexpr int8_t kModeNone = 0;
 constexpr int8_t kModeCyclicSynchronousPosition = 8;
 constexpr int8_t kModeCyclicSynchronousTorque = 10;
+
+/// Quick stop option code (0x605A) 6: brake on the quick stop ramp and stay in quick stop active,
+/// from where enable operation resumes (transition 16) without passing through power off.
+constexpr int16_t kQuickStopRampAndHold = 6;
 
 /// Abort connection option codes (0x6007): what the drive does when it loses its master (a
 /// heartbeat it consumes times out). 4 and up, and negative codes, are the manufacturer's.

@@ -37,7 +37,8 @@
 // 0x6076 (k_t * rated current, mN m): the current loop drives target / k_t within 0x6073 (bit 11
 // "internal limit" when clamped); what reaches the plant is that torque times gear ratio and
 // efficiency.
-// Quick stop brakes with the position loop and holds (like quick stop option code 6): enable
+// Quick stop brakes with the position loop and holds (quick stop option code 6, 0x605A, which
+// takes no other value): enable
 // operation resumes (transition 16), disable voltage leaves (12). Following error: the link
 // farther than 0x6065 from the reference for 0x6066 ms (CSP) -> fault, EMCY 0x8611. A lost
 // master (a consumed heartbeat silent longer than its time; the watch starts with its first

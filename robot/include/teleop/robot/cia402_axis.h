@@ -54,16 +54,20 @@ class Cia402Axis {
   double torque_nm() const;
   can::cia402::State state() const { return can::cia402::state_from_statusword(feedback_.statusword); }
   bool enabled() const { return state() == can::cia402::State::kOperationEnabled; }
-  /// The drive has left operation enabled since it was enabled: a fault, its own quick stop (a
-  /// lost master), anything the master did not ask for. (A fault found before the first enable
-  /// is not a failure: the walk resets it.)
+  /// The drive holds in quick stop active because the master asked it to (quick_stop()).
+  bool holding() const { return quick_stop_asked_ && state() == can::cia402::State::kQuickStopActive; }
+  /// The drive has left operation enabled since it was enabled other than into the quick stop the
+  /// master asked for: a fault, its own quick stop (a lost master), a power-off. (A fault found
+  /// before the first enable is not a failure: the walk resets it.)
   bool failed() const;
 
   /// The command for the next cycle: while not enabled, the next step of the walk to operation
-  /// enabled at zero torque; once enabled, the joint torque within +-max_torque_nm (a clamp is
-  /// counted). After a failure the walk does not restart by itself: reset() does that.
+  /// enabled at zero torque; from a quick stop the master asked for, enable operation at once
+  /// (transition 16, with quick stop option code 6: no power-off in between) with the torque;
+  /// once enabled, the joint torque within +-max_torque_nm (a clamp is counted). After a failure
+  /// only quick stop: reset() lets the walk start again.
   AxisCommand command(double torque_nm);
-  /// Quick stop (controlword 0x0002): the drive brakes and holds by itself.
+  /// Quick stop (controlword 0x0002): the drive brakes and holds by itself, until command().
   AxisCommand quick_stop();
   /// Forgets a failure: the next command() walks the drive to operation enabled again.
   void reset();
@@ -83,6 +87,8 @@ class Cia402Axis {
   AxisFeedback feedback_;
   double velocity_radps_ = 0.0;  // measured, or differentiated and filtered
   uint16_t controlword_ = 0;
+  bool quick_stop_asked_ = false;  // until the drive shows enabled after the master resumed it
+  bool resume_sent_ = false;       // enable operation sent since the quick stop
   bool was_enabled_ = false;
   bool failed_ = false;
   uint64_t clamped_ = 0;

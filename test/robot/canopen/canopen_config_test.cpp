@@ -1,0 +1,67 @@
+// The `canopen:` keys of a follower's section: one mapping per drive in the joints' order, the
+// bus's timing with its defaults, and a clear error naming the key for what cannot work.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "teleop/robot/canopen_backend.h"
+
+namespace teleop::robot {
+namespace {
+
+const std::string kDrive = "{bus: can0, node: 1, gear_ratio: 100, encoder_ticks_per_rev: 4096, rated_torque_mnm: 500, "
+                           "max_torque_nm: 80}";
+
+CanopenHardwareConfig parse(const std::string& yaml) {
+  const ConfigNode root = ConfigNode::load_string(yaml, "follower.yaml");
+  return parse_canopen_hardware(root.child("follower"))->config();
+}
+
+std::string error_of(const std::string& yaml) {
+  try {
+    (void)parse(yaml);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(CanopenHardwareConfig, ReadsEachDriveAndDefaultsTheTiming) {
+  const CanopenHardwareConfig c = parse(
+      "follower:\n  canopen:\n    drives:\n      - " + kDrive +
+      "\n      - {bus: can1, node: 2, gear_ratio: 50, gear_efficiency: 0.9, encoder_ticks_per_rev: 65536, "
+      "rated_torque_mnm: 250, offset_rad: -0.5, inverted: true, max_torque_nm: 40, q_min_rad: -2, q_max_rad: 2}\n");
+  ASSERT_EQ(c.joints.size(), 2u);
+  EXPECT_EQ(c.joints[0].bus, "can0");
+  EXPECT_EQ(c.joints[0].node, 1);
+  EXPECT_DOUBLE_EQ(c.joints[0].axis.rated_torque_nm, 0.5);
+  EXPECT_DOUBLE_EQ(c.joints[0].axis.gear_efficiency, 1.0);
+  EXPECT_EQ(c.joints[1].bus, "can1");
+  EXPECT_TRUE(c.joints[1].axis.inverted);
+  EXPECT_DOUBLE_EQ(c.joints[1].axis.offset_rad, -0.5);
+  EXPECT_DOUBLE_EQ(c.joints[1].q_max_rad, 2.0);
+  EXPECT_EQ(c.master_node, 127);
+  EXPECT_EQ(c.master_lost_after_ms, 50);
+  EXPECT_EQ(c.sync_divider, 1u);
+  EXPECT_DOUBLE_EQ(c.state_timeout_s, 0.005);
+}
+
+TEST(CanopenHardwareConfig, NamesTheKeyOfWhatCannotWork) {
+  EXPECT_NE(error_of("follower:\n  canopen:\n    drives: []\n").find("drives"), std::string::npos);
+  EXPECT_NE(error_of("follower:\n  canopen:\n    drives:\n      - {bus: can0, node: 1}\n").find("gear_ratio"),
+            std::string::npos);
+  EXPECT_NE(error_of("follower:\n  canopen:\n    drives:\n      - " + kDrive + "\n      - " + kDrive + "\n")
+                .find("gives node 1 on can0 to joints 1 and 2"),
+            std::string::npos);
+  EXPECT_NE(error_of("follower:\n  canopen:\n    drives:\n      - " + kDrive +
+                     "\n    master_heartbeat_ms: 50\n    master_lost_after_ms: 50\n")
+                .find("master_lost_after_ms"),
+            std::string::npos);
+  EXPECT_NE(error_of("follower:\n  canopen:\n    drives:\n      - {bus: can0, node: 128, gear_ratio: 1, "
+                     "encoder_ticks_per_rev: 1, rated_torque_mnm: 1, max_torque_nm: 1}\n")
+                .find("node"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace teleop::robot
