@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "teleop/can/virtual_can_bus.h"
+#include "emulated_joint.h"
 #include "teleop/drive/emulated_drive.h"
 
 namespace teleop::robot {
@@ -20,17 +21,7 @@ namespace {
 using can::cia402::State;
 constexpr int64_t kMs = 1'000'000;
 
-// what the master must know of the emulated drive's defaults: gear 100 at 80 %, 4096 ticks per
-// motor turn, rated torque k_t x rated current = 0.01 N m x 1 = 10 mN m
-Cia402AxisConfig emulated_joint() {
-  Cia402AxisConfig c;
-  c.gear_ratio = 100.0;
-  c.gear_efficiency = 0.8;
-  c.encoder_ticks_per_rev = 4096.0;
-  c.rated_torque_nm = 0.010;
-  c.max_torque_nm = 1.0;
-  return c;
-}
+using test::emulated_joint;
 
 class ArmRig {
  public:

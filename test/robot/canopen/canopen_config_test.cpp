@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "follower_section.h"
 #include "teleop/robot/canopen_backend.h"
 
 namespace teleop::robot {
@@ -13,18 +14,9 @@ const std::string kDrive = "{bus: can0, node: 1, gear_ratio: 100, encoder_ticks_
                            "max_torque_nm: 80}";
 
 CanopenHardwareConfig parse(const std::string& yaml) {
-  const ConfigNode root = ConfigNode::load_string(yaml, "follower.yaml");
-  return parse_canopen_hardware(root.child("follower"))->config();
+  return test::parse_follower_section(yaml, parse_canopen_hardware);
 }
-
-std::string error_of(const std::string& yaml) {
-  try {
-    (void)parse(yaml);
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string error_of(const std::string& yaml) { return test::follower_section_error(yaml, parse_canopen_hardware); }
 
 TEST(CanopenHardwareConfig, ReadsEachDriveAndDefaultsTheTiming) {
   const CanopenHardwareConfig c = parse(

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "teleop/can/virtual_can_bus.h"
+#include "emulated_joint.h"
 #include "teleop/drive/emulated_drive.h"
 
 namespace teleop::robot {
@@ -17,15 +18,7 @@ namespace {
 
 using can::cia402::State;
 
-Cia402AxisConfig emulated_joint() {
-  Cia402AxisConfig c;
-  c.gear_ratio = 100.0;
-  c.gear_efficiency = 0.8;
-  c.encoder_ticks_per_rev = 4096.0;
-  c.rated_torque_nm = 0.010;
-  c.max_torque_nm = 1.0;
-  return c;
-}
+using test::emulated_joint;
 
 // three joints: nodes 1 and 2 on "canA", node 5 on "canB"
 class HardwareRig {

@@ -87,6 +87,15 @@ struct DriveStateMachine {
   }
 };
 
+/// Walks the drive with the axis's commands at zero torque, at most `cycles` cycles.
+void walk(Cia402Axis& axis, DriveStateMachine& drive, int cycles = 12) {
+  for (int i = 0; i < cycles && !axis.enabled(); ++i) {
+    axis.take(drive.feedback());
+    drive.obey(axis.command(0.0).controlword);
+    axis.take(drive.feedback());
+  }
+}
+
 TEST(Cia402Axis, WalksTheDriveToOperationEnabledAtZeroTorqueThenCommandsTorque) {
   Cia402Axis axis(joint());
   DriveStateMachine drive;
@@ -111,10 +120,7 @@ TEST(Cia402Axis, AFaultBeforeTheFirstEnableIsResetByTheWalk) {
   Cia402Axis axis(joint());
   DriveStateMachine drive;
   drive.state = State::kFault;
-  for (int i = 0; i < 12 && !axis.enabled(); ++i) {
-    axis.take(drive.feedback());
-    drive.obey(axis.command(0.0).controlword);
-  }
+  walk(axis, drive);
   EXPECT_TRUE(axis.enabled());
   EXPECT_FALSE(axis.failed());
 }
@@ -123,10 +129,7 @@ TEST(Cia402Axis, LeavingOperationEnabledUnaskedIsAFailureThatHoldsUntilReset) {
   for (const State left_to : {State::kFault, State::kQuickStopActive, State::kSwitchOnDisabled}) {
     Cia402Axis axis(joint());
     DriveStateMachine drive;
-    for (int i = 0; i < 10 && !axis.enabled(); ++i) {
-      axis.take(drive.feedback());
-      drive.obey(axis.command(0.0).controlword);
-    }
+    walk(axis, drive);
     ASSERT_TRUE(axis.enabled());
     drive.state = left_to;
     axis.take(drive.feedback());
@@ -140,10 +143,7 @@ TEST(Cia402Axis, LeavingOperationEnabledUnaskedIsAFailureThatHoldsUntilReset) {
       axis.take(drive.feedback());
     }
     axis.reset();
-    for (int i = 0; i < 12 && !axis.enabled(); ++i) {
-      drive.obey(axis.command(0.0).controlword);
-      axis.take(drive.feedback());
-    }
+    walk(axis, drive);
     EXPECT_TRUE(axis.enabled()) << cia402::to_string(left_to);
   }
 }
@@ -151,10 +151,7 @@ TEST(Cia402Axis, LeavingOperationEnabledUnaskedIsAFailureThatHoldsUntilReset) {
 TEST(Cia402Axis, AQuickStopTheMasterAskedForHoldsAndResumesWithoutAFailure) {
   Cia402Axis axis(joint());
   DriveStateMachine drive;
-  for (int i = 0; i < 10 && !axis.enabled(); ++i) {
-    axis.take(drive.feedback());
-    drive.obey(axis.command(0.0).controlword);
-  }
+  walk(axis, drive);
   ASSERT_TRUE(axis.enabled());
   drive.obey(axis.quick_stop().controlword);
   // the feedback of the cycle before still says enabled: the axis neither walks nor fails

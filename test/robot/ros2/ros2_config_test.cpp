@@ -2,24 +2,14 @@
 // a clear error for what cannot work.
 #include <gtest/gtest.h>
 
+#include "follower_section.h"
 #include "teleop/robot/ros2_backend.h"
 
 namespace teleop::robot {
 namespace {
 
-Ros2HardwareConfig parse(const std::string& yaml) {
-  const ConfigNode root = ConfigNode::load_string(yaml, "follower.yaml");
-  return parse_ros2_hardware(root.child("follower"))->config();
-}
-
-std::string error_of(const std::string& yaml) {
-  try {
-    (void)parse(yaml);
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
+Ros2HardwareConfig parse(const std::string& yaml) { return test::parse_follower_section(yaml, parse_ros2_hardware); }
+std::string error_of(const std::string& yaml) { return test::follower_section_error(yaml, parse_ros2_hardware); }
 
 TEST(Ros2HardwareConfig, DefaultsFollowRos2ControlsExamples) {
   const Ros2HardwareConfig c = parse("follower:\n  ros2:\n    joints: [j1, j2]\n");
