@@ -24,7 +24,7 @@
 #include "teleop/can/virtual_can_bus.h"
 #include "teleop/experiment/hand_study.h"
 #include "teleop/experiment/hand_study_simulation.h"
-#include "teleop/hand/emulated_hand.h"
+#include "teleop/drive/drive_group.h"
 #include "teleop/hand/grasp_closer.h"
 #include "teleop/hand/grasp_object.h"
 #include "teleop/hand/hand_adapter.h"
@@ -152,16 +152,16 @@ class EmulatorRig {
  public:
   EmulatorRig(std::unique_ptr<hand::MujocoDrivePlants> plants, const hand::HandAdapterConfig& config)
       : plants_(std::move(plants)), adapter_ep_(bus_.open("adapter")), adapter_(*adapter_ep_, config) {
-    std::vector<hand::EmulatedHandNode> nodes;
+    std::vector<drive::DriveGroupNode> nodes;
     for (size_t k = 0; k < hand::kHandMotors; ++k) {
       endpoints_.push_back(bus_.open("drive"));
-      hand::EmulatedHandNode n;
+      drive::DriveGroupNode n;
       n.bus = endpoints_.back().get();
       n.config.node_id = config.node_ids[k];
       n.channel = k;
       nodes.push_back(n);
     }
-    hand_ = std::make_unique<hand::EmulatedHand>(nodes, plants_.get());
+    hand_ = std::make_unique<drive::DriveGroup>(nodes, plants_.get());
     while (adapter_.phase() != hand::HandPhase::kOperational && now_ns_ < 5'000'000'000) cycle();
   }
   hand::HandAdapter& adapter() { return adapter_; }
@@ -184,7 +184,7 @@ class EmulatorRig {
   std::unique_ptr<can::VirtualCanEndpoint> adapter_ep_;
   hand::HandAdapter adapter_;
   std::vector<std::unique_ptr<can::VirtualCanEndpoint>> endpoints_;
-  std::unique_ptr<hand::EmulatedHand> hand_;
+  std::unique_ptr<drive::DriveGroup> hand_;
   int64_t now_ns_ = 0;
 };
 

@@ -26,7 +26,7 @@
 #include "teleop/can/socketcan_bus.h"
 #include "teleop/common/data_paths.h"
 #include "teleop/common/version.h"
-#include "teleop/hand/emulated_hand.h"
+#include "teleop/drive/drive_group.h"
 #include "teleop/hand/fault_schedule.h"
 #include "teleop/hand/grasp_object.h"
 #include "teleop/hand/mujoco_drive_plants.h"
@@ -128,9 +128,9 @@ int main(int argc, char** argv) {
   std::unique_ptr<teleop::hand::MujocoDrivePlants> plants;
   std::unique_ptr<teleop::hand::GraspObject> object;
   std::unique_ptr<teleop::hand::emulator::SimLog> sim_log;
-  std::unique_ptr<teleop::hand::EmulatedHand> hand;
+  std::unique_ptr<teleop::drive::DriveGroup> hand;
   try {
-    std::vector<teleop::hand::EmulatedHandNode> drive_nodes;
+    std::vector<teleop::drive::DriveGroupNode> drive_nodes;
     for (int node = first; node <= last; ++node) {
       teleop::can::SocketCanOptions options;
       options.filters = teleop::can::canopen_node_filters(static_cast<uint8_t>(node));
@@ -138,7 +138,7 @@ int main(int argc, char** argv) {
       // of another node (dummy mapping, docs/can_bus_budget.md)
       options.filters.push_back({teleop::can::cob::kRpdo2, 0x780, false});
       buses.push_back(std::make_unique<teleop::can::SocketCanBus>(interface, options));
-      teleop::hand::EmulatedHandNode n;
+      teleop::drive::DriveGroupNode n;
       n.bus = buses.back().get();
       n.config.node_id = static_cast<teleop::can::NodeId>(node);
       n.config.serial = static_cast<uint32_t>(node);
@@ -162,7 +162,7 @@ int main(int argc, char** argv) {
         sim_log = std::make_unique<teleop::hand::emulator::SimLog>(sim_log_path, kSimLogIntervalS);
       }
     }
-    hand = std::make_unique<teleop::hand::EmulatedHand>(drive_nodes, plants.get());
+    hand = std::make_unique<teleop::drive::DriveGroup>(drive_nodes, plants.get());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "teleop_hand_emulator: %s\n", e.what());
     return 1;

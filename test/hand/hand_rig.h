@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "teleop/can/virtual_can_bus.h"
-#include "teleop/hand/emulated_hand.h"
+#include "teleop/drive/drive_group.h"
 #include "teleop/hand/hand_adapter.h"
 
 namespace teleop::hand::test {
@@ -22,21 +22,21 @@ class HandRig {
   explicit HandRig(const HandAdapterConfig& config = {}, std::vector<NodeId> missing = {},
                    drive::SharedDrivePlant* plant = nullptr)
       : adapter_ep_(bus_.open("adapter")), adapter_(*adapter_ep_, config) {
-    std::vector<EmulatedHandNode> nodes;
+    std::vector<drive::DriveGroupNode> nodes;
     for (size_t k = 0; k < config.node_ids.size(); ++k) {
       const NodeId node = config.node_ids[k];
       bool skip = false;
       for (NodeId m : missing) skip = skip || m == node;
       if (skip) continue;
       endpoints_.push_back(bus_.open("node"));
-      EmulatedHandNode n;
+      drive::DriveGroupNode n;
       n.bus = endpoints_.back().get();
       n.config.node_id = node;
       n.config.serial = node;
       n.channel = k;
       nodes.push_back(n);
     }
-    hand_ = std::make_unique<EmulatedHand>(nodes, plant);
+    hand_ = std::make_unique<drive::DriveGroup>(nodes, plant);
   }
 
   HandAdapter& adapter() { return adapter_; }
@@ -44,7 +44,7 @@ class HandRig {
   VirtualCanBus& bus() { return bus_; }
   drive::EmulatedDrive& drive(size_t i) { return hand_->drive(i); }
   size_t drives() const { return hand_->drives(); }
-  EmulatedHand& hand() { return *hand_; }
+  drive::DriveGroup& hand() { return *hand_; }
   int64_t now_ns() const { return now_ns_; }
   double period_s() const { return 1.0 / adapter_.config().cycle_rate_hz; }
 
@@ -83,7 +83,7 @@ class HandRig {
   std::unique_ptr<VirtualCanEndpoint> adapter_ep_;
   HandAdapter adapter_;
   std::vector<std::unique_ptr<VirtualCanEndpoint>> endpoints_;
-  std::unique_ptr<EmulatedHand> hand_;
+  std::unique_ptr<drive::DriveGroup> hand_;
   int64_t now_ns_ = 0;
 };
 

@@ -6,7 +6,7 @@
 //     model, drive/src/link_plant.h), advanced by the drive itself;
 //   - one shared simulation that all drives of a hand turn together (the MuJoCo hand,
 //     teleop/hand/mujoco_drive_plants.h): it advances in fixed steps, after every drive has
-//     put in its torque for the step. EmulatedHand (emulated_hand.h) keeps the drives and such
+//     put in its torque for the step. DriveGroup (drive_group.h) keeps the drives and such
 //     a plant in lock-step.
 // Units: output side (after the gearbox): rad, rad/s, N m. Real-time safe: no allocation, no
 // exceptions, no blocking in any of these calls.

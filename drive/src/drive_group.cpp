@@ -1,41 +1,41 @@
-#include "teleop/hand/emulated_hand.h"
+#include "teleop/drive/drive_group.h"
 
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-namespace teleop::hand {
+namespace teleop::drive {
 
-EmulatedHand::EmulatedHand(const std::vector<EmulatedHandNode>& nodes, drive::SharedDrivePlant* plant) : plant_(plant) {
+DriveGroup::DriveGroup(const std::vector<DriveGroupNode>& nodes, SharedDrivePlant* plant) : plant_(plant) {
   if (plant_ != nullptr) {
     plant_step_s_ = plant_->step_s();
     plant_step_ns_ = std::isfinite(plant_step_s_) ? std::llround(plant_step_s_ * 1e9) : 0;
     // at least a nanosecond: a step that rounds to 0 ns would never use up the pending time
     if (plant_step_ns_ < 1) {
-      throw std::invalid_argument("EmulatedHand: the shared plant's step must be finite and at least 1 ns");
+      throw std::invalid_argument("DriveGroup: the shared plant's step must be finite and at least 1 ns");
     }
   }
   std::vector<bool> taken(plant_ != nullptr ? plant_->channels() : 0, false);
-  for (const EmulatedHandNode& node : nodes) {
-    if (node.bus == nullptr) throw std::invalid_argument("EmulatedHand: node without a bus");
+  for (const DriveGroupNode& node : nodes) {
+    if (node.bus == nullptr) throw std::invalid_argument("DriveGroup: node without a bus");
     if (plant_ == nullptr) {
-      drives_.push_back(std::make_unique<drive::EmulatedDrive>(*node.bus, node.config));
+      drives_.push_back(std::make_unique<EmulatedDrive>(*node.bus, node.config));
       continue;
     }
     if (node.channel >= taken.size()) {
-      throw std::invalid_argument("EmulatedHand: node " + std::to_string(node.config.node_id) + " turns channel " +
+      throw std::invalid_argument("DriveGroup: node " + std::to_string(node.config.node_id) + " turns channel " +
                                   std::to_string(node.channel) + ", the plant has " + std::to_string(taken.size()));
     }
     if (taken[node.channel]) {
-      throw std::invalid_argument("EmulatedHand: channel " + std::to_string(node.channel) +
+      throw std::invalid_argument("DriveGroup: channel " + std::to_string(node.channel) +
                                   " is turned by two drives (node " + std::to_string(node.config.node_id) + ")");
     }
     taken[node.channel] = true;
-    drives_.push_back(std::make_unique<drive::EmulatedDrive>(*node.bus, node.config, plant_->channel(node.channel)));
+    drives_.push_back(std::make_unique<EmulatedDrive>(*node.bus, node.config, plant_->channel(node.channel)));
   }
 }
 
-void EmulatedHand::step(double dt_s) {
+void DriveGroup::step(double dt_s) {
   if (!(dt_s >= 0) || !std::isfinite(dt_s)) return;
   if (plant_ == nullptr) {
     for (auto& d : drives_) d->step(dt_s);
@@ -53,4 +53,4 @@ void EmulatedHand::step(double dt_s) {
   }
 }
 
-}  // namespace teleop::hand
+}  // namespace teleop::drive
