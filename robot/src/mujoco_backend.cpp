@@ -24,6 +24,7 @@ std::shared_ptr<const MujocoHardwareSpec> parse_mujoco_hardware(const ConfigNode
   config.model_path = sim::get_model_path(mujoco, "model");
   config.keyframe = mujoco.get_string("keyframe", "");
   if (const auto real = mujoco.optional_child("real_robot")) config.real_robot = sim::read_real_robot(*real);
+  config.gravity_compensated = mujoco.get_bool("gravity_compensated", true);
   return std::make_shared<const MujocoHardwareSpec>(config);
 }
 

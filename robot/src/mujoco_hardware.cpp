@@ -14,7 +14,7 @@ MujocoHardware::MujocoHardware(std::shared_ptr<MujocoScene> scene, const MujocoH
     : MujocoHardware(std::move(scene), config, false) {}
 
 MujocoHardware::MujocoHardware(std::shared_ptr<MujocoScene> scene, const MujocoHardwareConfig& config, bool steps_scene)
-    : scene_(std::move(scene)), steps_scene_(steps_scene) {
+    : scene_(std::move(scene)), steps_scene_(steps_scene), gravity_compensated_(config.gravity_compensated) {
   const mjModel* m = scene_->simulation().model();
   name_ = "mujoco:" + scene_->file_name() + (config.joint_prefix.empty() ? "" : ":" + config.joint_prefix + "*");
   // the arm: hinge joints driven by actuators, in actuator order
@@ -39,16 +39,23 @@ void MujocoHardware::place(const JointVector& q_rad) {
   scene_->state_changed();
 }
 
+void MujocoHardware::place_joint(size_t k, double q_rad) {
+  mjData* d = scene_->simulation().data();
+  d->qpos[arm_.qpos[k]] = q_rad;
+  d->qvel[arm_.dof[k]] = 0.0;
+  scene_->state_changed();
+}
+
 HardwareStatus MujocoHardware::write(const JointVector& tau_nm) {
   mjData* d = scene_->simulation().data();
-  const mjtNum* gravity = scene_->gravity();
+  const mjtNum* gravity = gravity_compensated_ ? scene_->gravity() : nullptr;
   HardwareStatus status = HardwareStatus::kOk;
   for (size_t i = 0; i < arm_.count; ++i) {
     if (!std::isfinite(tau_nm[i])) {
       status = HardwareStatus::kFault;
       break;
     }
-    d->ctrl[arm_.actuator[i]] = tau_nm[i] + gravity[arm_.dof[i]];
+    d->ctrl[arm_.actuator[i]] = tau_nm[i] + (gravity != nullptr ? gravity[arm_.dof[i]] : 0.0);
   }
   // a shared scene steps once all its arms wrote, whatever each of them wrote
   if (steps_scene_) scene_->step();

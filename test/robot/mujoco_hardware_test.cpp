@@ -40,6 +40,31 @@ TEST(MujocoHardware, HoldsItsPoseWithZeroCommandedTorqueBecauseItCompensatesGrav
   for (size_t j = 0; j < 7; ++j) EXPECT_NEAR(s.q_rad[j], start.q_rad[j], 5e-3) << "joint " << j;
 }
 
+TEST(MujocoHardware, AnArmWithoutGravityCompensationSagsUnlessItsTorqueCarriesItsWeight) {
+  MujocoHardwareConfig config = wall_scene();
+  config.gravity_compensated = false;
+  MujocoHardware plain(config);
+  EXPECT_FALSE(plain.compensates_gravity());
+  MujocoHardware compensated(wall_scene());
+  ArmState start, s, g;
+  ASSERT_EQ(plain.read(start), HardwareStatus::kOk);
+  const JointVector zero{};
+  for (int i = 0; i < 300; ++i) ASSERT_EQ(plain.write(zero), HardwareStatus::kOk);
+  ASSERT_EQ(plain.read(s), HardwareStatus::kOk);
+  double moved = 0.0;
+  for (size_t j = 0; j < 7; ++j) moved = std::max(moved, std::abs(s.q_rad[j] - start.q_rad[j]));
+  EXPECT_GT(moved, 0.05) << "zero torque: it falls";
+  // the torque the compensated arm adds itself, commanded to the plain one, holds it
+  MujocoHardware carried(config);
+  for (int i = 0; i < 300; ++i) {
+    ASSERT_EQ(compensated.read(g), HardwareStatus::kOk);
+    ASSERT_EQ(compensated.write(zero), HardwareStatus::kOk);
+    ASSERT_EQ(carried.write(g.tau_measured_nm), HardwareStatus::kOk);
+  }
+  ASSERT_EQ(carried.read(s), HardwareStatus::kOk);
+  for (size_t j = 0; j < 7; ++j) EXPECT_NEAR(s.q_rad[j], start.q_rad[j], 5e-3) << "joint " << j;
+}
+
 TEST(MujocoHardware, PushingIntoTheWallGivesAForceOutOfTheWallThatGrowsWithThePush) {
   // joint 2 (shoulder) forward moves the flange towards the wall at +x
   auto push = [](double torque_nm) {

@@ -1,6 +1,6 @@
 #pragma once
 // RobotHardware on a MuJoCo simulation (config/models): one arm of a MujocoScene. write()
-// applies the torques plus gravity compensation; the scene advances by one control period after
+// applies the torques plus gravity compensation (unless the arm is configured without); the scene advances by one control period after
 // it — at once for a one-arm scene, or once every arm has written for a shared one (the owner of
 // the scene steps it then).
 
@@ -19,6 +19,10 @@ struct MujocoHardwareConfig : MujocoSceneConfig {
   std::string joint_prefix;
   /// The site on the end effector whose body's contacts make the external wrench.
   std::string ee_site = "ee_site";
+  /// The arm adds its gravity torque to every command, as a Franka does (true), or not, as an arm
+  /// of plain servo drives does (false: the follower adds it, and an emulated arm of CAN drives
+  /// turns this one).
+  bool gravity_compensated = true;
 };
 
 class MujocoHardware final : public RobotHardware {
@@ -33,12 +37,15 @@ class MujocoHardware final : public RobotHardware {
   [[nodiscard]] HardwareStatus read(ArmState& state) override;
   [[nodiscard]] HardwareStatus write(const JointVector& tau_nm) override;
   const char* name() const override { return name_.c_str(); }
-  bool compensates_gravity() const override { return true; }
+  bool compensates_gravity() const override { return gravity_compensated_; }
   /// The joints' ranges and the motors' control ranges from the model.
   HardwareLimits limits() const override;
 
   /// Puts the arm at rest at `q_rad` (setup time, not for the control loop).
   void place(const JointVector& q_rad);
+  /// Puts joint k at rest at this angle, the others as they are (a holding brake that engaged
+  /// there, in an emulator's loop). Real-time safe.
+  void place_joint(size_t k, double q_rad);
   /// The simulation, for tests and the twin (not for the control loop).
   sim::MujocoModel& simulation() { return scene_->simulation(); }
 
@@ -48,6 +55,7 @@ class MujocoHardware final : public RobotHardware {
 
   std::shared_ptr<MujocoScene> scene_;
   bool steps_scene_;
+  bool gravity_compensated_;
   std::string name_;
   sim::ActuatedJoints arm_;
   int ee_body_ = -1;
