@@ -148,7 +148,8 @@ void EmulatedDrive::substep() {
   } else {
     p.motor.switch_off();
   }
-  p.motor.turn(p.faults.stalled());
+  // jammed: stalled by fault injection, or held by the brake while the power is off
+  p.motor.turn(p.faults.stalled() || (config_.motor.holding_brake && !p.device.power_on()));
   p.device.advance_fault_reaction(substep_ns_);
 }
 

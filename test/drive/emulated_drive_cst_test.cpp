@@ -172,6 +172,41 @@ TEST(EmulatedDriveTorque, RefusesWhatItCannotDo) {
   EXPECT_THROW(DriveRig{bad}, std::invalid_argument);
 }
 
+/// A link under a constant load (its weight): it turns unless the motor holds it or it is jammed.
+class LoadedLink final : public DrivePlant {
+ public:
+  double position_rad() const override { return q_rad_; }
+  double velocity_radps() const override { return dq_radps_; }
+  void apply(double torque_nm, double dt_s, bool jammed) override {
+    if (jammed) {
+      dq_radps_ = 0.0;
+      return;
+    }
+    dq_radps_ += (torque_nm - 0.1) / 0.01 * dt_s;
+    q_rad_ += dq_radps_ * dt_s;
+  }
+
+ private:
+  double q_rad_ = 0.0, dq_radps_ = 0.0;
+};
+
+TEST(EmulatedDriveTorque, AHoldingBrakeHoldsTheLinkWhileThePowerIsOff) {
+  EmulatedDriveConfig config;
+  config.motor.holding_brake = true;
+  LoadedLink link;
+  DriveRig rig(config, link);
+  rig.run(0.2);  // switch on disabled, braked
+  EXPECT_EQ(link.position_rad(), 0.0);
+  ASSERT_GT(bring_up_torque(rig), 0);  // enabled at zero torque: the brake lets go, the load turns it
+  for (int i = 0; i < 100; ++i) torque_cycle(rig, 0x000F, 0);  // 10 rad/s^2 for 0.1 s
+  EXPECT_LT(link.position_rad(), -0.03);
+  // disable voltage: braked again where it is
+  torque_cycle(rig, 0x0000, 0);
+  const double braked_at = link.position_rad();
+  rig.run(0.2);
+  EXPECT_EQ(link.position_rad(), braked_at);
+}
+
 // --- the lost master ---------------------------------------------------------------------------
 
 struct LostMaster {

@@ -13,7 +13,7 @@
 //   - inside: cascaded position PID (anti-windup, reference step limit) -> current PI
 //     (anti-windup) -> PWM -> a DC motor with gearbox turning its plant (DrivePlant): by
 //     default its own finger link between hard stops, or a channel of a shared simulation such
-//     as the MuJoCo hand (EmulatedHand keeps such drives and their plant in lock-step)
+//     as the MuJoCo hand (drive::DriveGroup keeps such drives and their plant in lock-step)
 //   - fault injection: silence the heartbeat, raise a fault with an EMCY code, jam the motor,
 //     drop or delay PDOs
 //
@@ -80,6 +80,9 @@ struct EmulatedMotorParams {
   double stop_stiffness_nm_per_rad = 200.0;
   double stop_damping_nms_per_rad = 0.5;
   double encoder_ticks_per_rev = 4096.0;  // motor side, after quadrature
+  /// A holding brake, engaged whenever the power stage is off (as an arm joint has, which would
+  /// fall without it): the plant is told it is jammed then.
+  bool holding_brake = false;
 };
 
 /// The cascade inside the drive. Position loop gains act on the output angle [rad] and give a
