@@ -23,20 +23,17 @@ void ArmDrivePlants::take_state() {
   for (size_t k = 0; k < channels_.size(); ++k) {
     Channel& c = channels_[k];
     const double sign = c.mounting_.inverted ? -1.0 : 1.0;
-    c.q_rad_ = sign * (state_.q_rad[k] - c.mounting_.offset_rad);
-    c.dq_radps_ = sign * state_.dq_radps[k];
-    c.impulse_nms_ = 0.0;
-    c.elapsed_s_ = 0.0;
+    c.sample(sign * (state_.q_rad[k] - c.mounting_.offset_rad), sign * state_.dq_radps[k]);
   }
 }
 
 void ArmDrivePlants::step() {
   for (size_t k = 0; k < channels_.size(); ++k) {
     Channel& c = channels_[k];
-    const double mean_nm = c.elapsed_s_ > 0 ? c.impulse_nms_ / c.elapsed_s_ : 0.0;
-    torque_nm_[k] = c.jammed_ ? 0.0 : (c.mounting_.inverted ? -mean_nm : mean_nm);
-    if (c.jammed_ && !c.held_) c.held_q_rad_ = state_.q_rad[k];
-    c.held_ = c.jammed_;
+    const double mean_nm = c.mean_torque_nm();
+    torque_nm_[k] = c.jammed() ? 0.0 : (c.mounting_.inverted ? -mean_nm : mean_nm);
+    if (c.jammed() && !c.held_) c.held_q_rad_ = state_.q_rad[k];
+    c.held_ = c.jammed();
   }
   if (arm_.write(torque_nm_) != robot::HardwareStatus::kOk) ++refused_;
   for (size_t k = 0; k < channels_.size(); ++k) {

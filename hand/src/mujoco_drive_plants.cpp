@@ -19,10 +19,7 @@ double MujocoDrivePlants::step_s() const { return hand_.model()->opt.timestep; }
 void MujocoDrivePlants::sync_from_model() {
   const HandMotorVector m = hand_.motor_positions();
   const HandMotorVector dm = hand_.motor_velocities();
-  for (size_t k = 0; k < kHandMotors; ++k) {
-    channels_[k].m_rad_ = m[k];
-    channels_[k].dm_radps_ = dm[k];
-  }
+  for (size_t k = 0; k < kHandMotors; ++k) channels_[k].sample(m[k], dm[k]);
 }
 
 void MujocoDrivePlants::step() {
@@ -31,23 +28,21 @@ void MujocoDrivePlants::step() {
   hand_.begin_step();
   for (size_t k = 0; k < kHandMotors; ++k) {
     Channel& c = channels_[k];
-    last_torque_nm_[k] = c.elapsed_s_ > 0 ? c.impulse_nms_ / c.elapsed_s_ : 0.0;
-    hand_.set_motor_torque(k, c.jammed_ ? 0.0 : last_torque_nm_[k]);
+    last_torque_nm_[k] = c.mean_torque_nm();
+    hand_.set_motor_torque(k, c.jammed() ? 0.0 : last_torque_nm_[k]);
   }
   hand_.end_step();
   for (size_t k = 0; k < kHandMotors; ++k) {
     Channel& c = channels_[k];
     // a jammed motor: its main joint stays where the jam found it (motor units = main joint,
     // times the main joint's factor, plus its offset)
-    if (c.jammed_) {
+    if (c.jammed()) {
       const size_t j = index.main_joint[k];
-      if (!c.was_jammed_) c.jam_rad_ = c.m_rad_;
+      if (!c.was_jammed_) c.jam_rad_ = c.sampled_rad();
       d->qpos[index.qpos[j]] = hand_.coupling().offsets()[j] + hand_.coupling().terms()[j].factor * c.jam_rad_;
       d->qvel[index.dof[j]] = 0.0;
     }
-    c.was_jammed_ = c.jammed_;
-    c.impulse_nms_ = 0.0;
-    c.elapsed_s_ = 0.0;
+    c.was_jammed_ = c.jammed();
   }
   sync_from_model();
 }

@@ -10,6 +10,7 @@
 
 #include "process_helpers.h"
 #include "results_row.h"
+#include "stiff_wall_runs.h"
 #include "report_counter.h"
 #include "teleop/runtime/node_report.h"
 
@@ -216,18 +217,6 @@ struct StiffWallRows {
   ResultsRow ros2;
 };
 
-ResultsRow run_stiff_wall(const Site& site, const std::string& experiment, const std::string& architecture,
-                          const std::string& tag) {
-  const std::string csv = site.dir + "/" + tag + ".csv";
-  const ProcessResult r = run_process({bin("teleop"), "experiment", experiment, "--runs", architecture, "--profiles", "lan",
-                                       "--report-dir", site.dir + "/" + tag, "--csv", csv, "--domain",
-                                       std::to_string(site.domain), "--no-plots"},
-                                      120s);
-  EXPECT_EQ(r.exit_status, 0) << r.output;
-  ::testing::Test::RecordProperty(tag, read_file(csv));
-  return read_results_row(csv);
-}
-
 StiffWallRows stiff_wall_on_both(const std::string& architecture) {
   Site site;
   StiffWallRows rows;
@@ -236,22 +225,10 @@ StiffWallRows stiff_wall_on_both(const std::string& architecture) {
   Robot robot;
   robot.wrench_as_truth = true;
   (void)site.follower_config(robot);
-  for (const char* run : {"position_position", "pfc", "pfc_tdpa", "mmt"}) {
-    const std::string scenario = std::string("stiff_wall_") + run + ".yaml";
-    std::string text = read_file(source("config/scenarios/" + scenario));
-    const size_t follower = text.find("    config: follower\n");
-    if (follower == std::string::npos) throw std::runtime_error(scenario + " changed: update this test");
-    text.replace(follower, std::string("    config: follower\n").size(), "    config: follower_franka_ros2.yaml\n");
-    write_file(site.dir + "/" + scenario, text);
-  }
-  std::string experiment = read_file(source("config/experiments/stiff_wall.yaml"));
-  for (size_t at = experiment.find("../scenarios/"); at != std::string::npos; at = experiment.find("../scenarios/", at)) {
-    experiment.erase(at, std::string("../scenarios/").size());
-  }
-  write_file(site.dir + "/stiff_wall.yaml", experiment);
+  const std::string experiment = stiff_wall_with_follower(site, "teleop_follower", "follower_franka_ros2.yaml");
   RunningProcess standin(site.standin(robot, 120));
   EXPECT_TRUE(standin.wait_for_output("robot of 7 joints", 20s)) << standin.output();
-  rows.ros2 = run_stiff_wall(site, site.dir + "/stiff_wall.yaml", architecture, "ros2");
+  rows.ros2 = run_stiff_wall(site, experiment, architecture, "ros2");
   (void)standin.stop(SIGTERM, 10s);
   return rows;
 }

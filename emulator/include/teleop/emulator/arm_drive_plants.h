@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "teleop/drive/drive_plant.h"
+#include "teleop/drive/sampled_channel.h"
 #include "teleop/robot/mujoco_hardware.h"
 
 namespace teleop::emulator {
@@ -39,25 +40,11 @@ class ArmDrivePlants final : public drive::SharedDrivePlant {
   uint64_t refused_steps() const { return refused_; }
 
  private:
-  class Channel final : public drive::DrivePlant {
-   public:
-    double position_rad() const override { return q_rad_ + dq_radps_ * elapsed_s_; }
-    double velocity_radps() const override { return dq_radps_; }
-    void apply(double torque_nm, double dt_s, bool jammed) override {
-      impulse_nms_ += torque_nm * dt_s;
-      elapsed_s_ += dt_s;
-      jammed_ = jammed;
-    }
-
+  class Channel final : public drive::SampledChannel {
    private:
     friend class ArmDrivePlants;
     JointMounting mounting_;
-    double q_rad_ = 0.0;  // as the drive sees it, at the last step
-    double dq_radps_ = 0.0;
-    double impulse_nms_ = 0.0;  // the drive's torque since the last step, integrated over time
-    double elapsed_s_ = 0.0;
-    bool jammed_ = false;
-    bool held_ = false;    // jammed at the last step
+    bool held_ = false;        // jammed at the last step
     double held_q_rad_ = 0.0;  // the joint's angle where it was jammed (joint side)
   };
   void take_state();

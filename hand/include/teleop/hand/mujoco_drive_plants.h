@@ -15,6 +15,7 @@
 #include <array>
 
 #include "teleop/drive/drive_plant.h"
+#include "teleop/drive/sampled_channel.h"
 #include "teleop/hand/hand_plant.h"
 
 namespace teleop::hand {
@@ -43,23 +44,9 @@ class MujocoDrivePlants final : public drive::SharedDrivePlant {
   void sync_from_model();
 
  private:
-  class Channel final : public drive::DrivePlant {
-   public:
-    double position_rad() const override { return m_rad_ + dm_radps_ * elapsed_s_; }
-    double velocity_radps() const override { return dm_radps_; }
-    void apply(double torque_nm, double dt_s, bool jammed) override {
-      impulse_nms_ += torque_nm * dt_s;
-      elapsed_s_ += dt_s;
-      jammed_ = jammed;
-    }
-
+  class Channel final : public drive::SampledChannel {
    private:
     friend class MujocoDrivePlants;
-    double m_rad_ = 0.0;  // at the last step
-    double dm_radps_ = 0.0;
-    double impulse_nms_ = 0.0;  // torque applied since, integrated over time
-    double elapsed_s_ = 0.0;
-    bool jammed_ = false;
     bool was_jammed_ = false;
     double jam_rad_ = 0.0;  // where the main joint is held while jammed
   };
