@@ -1,8 +1,8 @@
 #include "emulated_can_arm.h"
 
 #include <algorithm>
+#include <cmath>
 
-#include "teleop/common/clock.h"
 #include "teleop/robot/canopen_backend.h"
 #include "teleop/robot/mujoco_backend.h"
 
@@ -52,7 +52,11 @@ EmulatedCanArm::EmulatedCanArm(const robot::CanopenHardwareConfig& drives, robot
   robot::SdoWait wait;
   wait.poll = std::chrono::nanoseconds(static_cast<int64_t>(period_s * 1e9));
   wait.pump = [this] { emulated_->step(period_s_); };
-  master_ = std::make_unique<robot::CanopenHardware>(drives, period_s, masters, wait, [] { return monotonic_now_ns(); });
+  // the master's clock is the emulated drives' time: in one process they advance only when the
+  // master's cycle steps them, however long the follower takes between two (its start)
+  master_ = std::make_unique<robot::CanopenHardware>(drives, period_s, masters, wait, [this] {
+    return static_cast<int64_t>(std::llround(emulated_->drives().time_s() * 1e9));
+  });
   name_ = std::string("canopen_emulated:") + (master_->name() + std::string("canopen:").size());
 }
 

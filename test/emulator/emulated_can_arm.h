@@ -4,7 +4,7 @@
 // emulated CiA 402 drives turning the MuJoCo arm (emulator::EmulatedArm), in one process on one
 // virtual bus per `bus` of the drives; the drives and the arm advance one control period after
 // every cycle's SYNC. Everything of the CAN arm but SocketCAN and a second process: the VM's
-// vcan HIL has those. The section's `canopen:` keys place the drives, its `mujoco:` keys name the
+// vcan HIL has those. The master's clock is the drives' time. The section's `canopen:` keys place the drives, its `mujoco:` keys name the
 // arm (without its gravity compensation: the drives carry it). The arm's contact torques and
 // wrench are reported as the simulation's ground truth, as the MuJoCo backend reports them.
 
