@@ -59,6 +59,8 @@ class HardwareRig {
     return true;
   }
   CanopenHardwareConfig& config() { return config_; }
+  /// A listener on bus canA (0) or canB (1): every frame sent there from now on.
+  std::unique_ptr<can::VirtualCanEndpoint> listen(size_t bus) { return buses_[bus]->open("listener"); }
 
  private:
   std::vector<std::unique_ptr<can::VirtualCanBus>> buses_;
@@ -131,6 +133,35 @@ TEST(CanopenHardware, OneFailedDriveMakesEveryDriveHold) {
   hw->report_counters(counters);
   EXPECT_EQ(counters[4], (std::pair<std::string, double>{"canopen_fault_node", 5}));
   EXPECT_EQ(counters[5], (std::pair<std::string, double>{"canopen_fault_emcy_code", can::emcy::kOverCurrent}));
+}
+
+// What CiA 402 asks of a master that sees a drive's EMCY: the other drives on quick stop within
+// two SYNC periods. Read off bus canA's frames: node 2's EMCY, then the SYNCs until node 1's
+// RPDO carries the quick stop (0x0002)
+TEST(CanopenHardware, AnEmcyQuickStopsTheOtherDrivesWithinTwoSyncs) {
+  HardwareRig rig;
+  auto hw = rig.start();
+  ArmState state;
+  for (int i = 0; i < 20; ++i) cycle(rig, *hw, state, 0.05);
+  auto listener = rig.listen(0);
+  rig.drive(1).raise_fault(can::emcy::kOverCurrent);
+  for (int i = 0; i < 10; ++i) cycle(rig, *hw, state, 0.05);
+  bool emcy_seen = false;
+  int syncs_after = 0;
+  int quick_stop_after = -1;
+  can::CanFrame f;
+  while (listener->receive(f, std::chrono::nanoseconds::zero()) == can::CanStatus::kOk && quick_stop_after < 0) {
+    if (f.id == can::cob::kEmcy + 2u) emcy_seen = true;
+    if (!emcy_seen) continue;
+    if (f.id == can::cob::kSync) ++syncs_after;
+    if (f.id == can::rpdo_cob_id(1, 1) && f.data[0] == 0x02 && f.data[1] == 0x00) quick_stop_after = syncs_after;
+  }
+  ASSERT_TRUE(emcy_seen);
+  // the quick stop goes out before the next SYNC after the EMCY is read: 0 or 1 SYNC after it,
+  // and takes effect at the SYNC that follows
+  EXPECT_GE(quick_stop_after, 0);
+  EXPECT_LE(quick_stop_after, 1);
+  EXPECT_EQ(rig.drive(0).state(), State::kQuickStopActive);
 }
 
 TEST(CanopenHardware, MissingFeedbackIsStaleNotAFault) {
