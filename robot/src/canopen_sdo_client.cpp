@@ -22,10 +22,15 @@ SdoMessage SdoClient::transfer(const can::Result<can::CanFrame>& request, can::N
     throw std::runtime_error("SDO " + what + ": the bus refused the request (" + can::to_string(sent) + ")");
   }
   const uint32_t answer_id = can::cob::kSdoTx + node;
-  for (std::chrono::nanoseconds waited{0}; waited <= wait_.timeout; waited += wait_.poll) {
+  // on a real bus the time is the clock's: other nodes' frames arriving faster than the poll
+  // (heartbeats, EMCY) must not hold the wait open; with a pump, each poll is one pump's time
+  const auto deadline = std::chrono::steady_clock::now() + wait_.timeout;
+  auto out_of_time = [&] { return !wait_.pump && std::chrono::steady_clock::now() > deadline; };
+  for (std::chrono::nanoseconds waited{0}; waited <= wait_.timeout && !out_of_time(); waited += wait_.poll) {
     if (wait_.pump) wait_.pump();
     can::CanFrame frame;
-    while (bus_.receive(frame, wait_.pump ? std::chrono::nanoseconds::zero() : wait_.poll) == can::CanStatus::kOk) {
+    while (!out_of_time() &&
+           bus_.receive(frame, wait_.pump ? std::chrono::nanoseconds::zero() : wait_.poll) == can::CanStatus::kOk) {
       if (frame.id != answer_id || frame.extended()) {
         if (other_frames) other_frames(frame);
         continue;
