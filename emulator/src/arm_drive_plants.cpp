@@ -37,8 +37,10 @@ void ArmDrivePlants::step() {
   }
   if (arm_.write(torque_nm_) != robot::HardwareStatus::kOk) ++refused_;
   for (size_t k = 0; k < channels_.size(); ++k) {
-    if (channels_[k].held_) arm_.place_joint(k, channels_[k].held_q_rad_);
+    held_[k] = channels_[k].held_;
+    held_q_rad_[k] = channels_[k].held_q_rad_;
   }
+  arm_.place_joints(held_q_rad_, held_);
   take_state();
 }
 

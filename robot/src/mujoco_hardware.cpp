@@ -39,11 +39,16 @@ void MujocoHardware::place(const JointVector& q_rad) {
   scene_->state_changed();
 }
 
-void MujocoHardware::place_joint(size_t k, double q_rad) {
+void MujocoHardware::place_joints(const JointVector& q_rad, const std::array<bool, kMaxJoints>& held) {
   mjData* d = scene_->simulation().data();
-  d->qpos[arm_.qpos[k]] = q_rad;
-  d->qvel[arm_.dof[k]] = 0.0;
-  scene_->state_changed();
+  bool any = false;
+  for (size_t k = 0; k < arm_.count; ++k) {
+    if (!held[k]) continue;
+    d->qpos[arm_.qpos[k]] = q_rad[k];
+    d->qvel[arm_.dof[k]] = 0.0;
+    any = true;
+  }
+  if (any) scene_->state_changed();
 }
 
 HardwareStatus MujocoHardware::write(const JointVector& tau_nm) {

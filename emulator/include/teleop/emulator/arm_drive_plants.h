@@ -9,6 +9,7 @@
 // engaged, or a stall injected) holds its joint where it engaged, at rest, whatever the others do.
 // Real-time safe after construction.
 
+#include <array>
 #include <vector>
 
 #include "teleop/drive/drive_plant.h"
@@ -54,6 +55,8 @@ class ArmDrivePlants final : public drive::SharedDrivePlant {
   std::vector<Channel> channels_;
   robot::ArmState state_;
   JointVector torque_nm_{};
+  JointVector held_q_rad_{};  // the braked joints' angles, placed together after each step
+  std::array<bool, kMaxJoints> held_{};
   uint64_t refused_ = 0;
 };
 

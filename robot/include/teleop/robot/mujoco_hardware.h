@@ -43,9 +43,10 @@ class MujocoHardware final : public RobotHardware {
 
   /// Puts the arm at rest at `q_rad` (setup time, not for the control loop).
   void place(const JointVector& q_rad);
-  /// Puts joint k at rest at this angle, the others as they are (a holding brake that engaged
-  /// there, in an emulator's loop). Real-time safe.
-  void place_joint(size_t k, double q_rad);
+  /// Puts the joints `held` marks at rest at their angle in `q_rad`, the others as they are
+  /// (holding brakes that engaged there, in an emulator's loop): one recomputation for all.
+  /// Real-time safe.
+  void place_joints(const JointVector& q_rad, const std::array<bool, kMaxJoints>& held);
   /// The simulation, for tests and the twin (not for the control loop).
   sim::MujocoModel& simulation() { return scene_->simulation(); }
 
