@@ -27,8 +27,9 @@ test_packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # the discovery server (fastdds discovery) of the discovery tests; sqlite3 to look into a bag
   fastdds-tools sqlite3
-  # Cyclone DDS 0.10 (ROS 2's other RMW) and its idlc: the interop test (test/transport/CMakeLists.txt)
-  cyclonedds-dev
+  # Cyclone DDS 0.10 (ROS 2's other RMW) and its idlc: the interop test (test/transport/CMakeLists.txt);
+  # idlc is in cyclonedds-tools, not in -dev (a fresh machine had the headers and no idlc)
+  cyclonedds-dev cyclonedds-tools
   can-utils iproute2
   # multi-host and security tests (test/netns): namespaces, the PKI script, packet capture
   openssl tcpdump
