@@ -45,10 +45,16 @@ void Cia402Axis::take(const AxisFeedback& feedback, double interval_s) {
   const State s = state();
   if (s == State::kOperationEnabled) {
     was_enabled_ = true;
-    // the quick stop is over once the drive shows enabled after the enable operation that ended it
-    if (resume_sent_) quick_stop_asked_ = resume_sent_ = false;
-  } else if (was_enabled_ && !(quick_stop_asked_ && s == State::kQuickStopActive)) {
-    failed_ = true;  // a fault found before the first enable is the walk's to reset
+    // the quick stop is over once the drive has shown enabled kResumeReports times in a row after
+    // the enable operation that ended it: the feedback lags the commands by a SYNC (by several
+    // where the drives answer late), so a report of enabled from before the quick stop took effect,
+    // followed by one of the quick stop itself, may still be on its way
+    if (resume_sent_ && ++enabled_reports_ >= kResumeReports) quick_stop_asked_ = resume_sent_ = false;
+  } else {
+    enabled_reports_ = 0;
+    if (was_enabled_ && !(quick_stop_asked_ && s == State::kQuickStopActive)) {
+      failed_ = true;  // a fault found before the first enable is the walk's to reset
+    }
   }
 }
 
@@ -90,6 +96,7 @@ AxisCommand Cia402Axis::command(double torque_nm) {
 AxisCommand Cia402Axis::quick_stop() {
   if (was_enabled_) quick_stop_asked_ = true;
   resume_sent_ = false;
+  enabled_reports_ = 0;
   controlword_ = cia402::controlword_for(cia402::Command::kQuickStop);
   return {controlword_, 0};
 }
@@ -98,6 +105,7 @@ void Cia402Axis::reset() {
   failed_ = false;
   was_enabled_ = false;
   quick_stop_asked_ = resume_sent_ = false;
+  enabled_reports_ = 0;
 }
 
 }  // namespace teleop::robot

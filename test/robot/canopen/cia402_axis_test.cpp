@@ -168,9 +168,27 @@ TEST(Cia402Axis, AQuickStopTheMasterAskedForHoldsAndResumesWithoutAFailure) {
   axis.take(drive.feedback());
   EXPECT_FALSE(axis.holding());
   EXPECT_FALSE(axis.failed());
-  // and a quick stop the master did not ask for, later, is one
+  // once the drive has reported enabled kResumeReports times in a row after the resume, a quick
+  // stop the master did not ask for is one
+  for (unsigned k = 1; k < Cia402Axis::kResumeReports; ++k) axis.take(drive.feedback());
   axis.take({cia402::statusword_for(State::kQuickStopActive), 0, 0});
   EXPECT_TRUE(axis.failed());
+}
+
+// Drives that answer late (a time-dilated emulator): after the quick stop and the resume went out,
+// a report of enabled from before the quick stop took effect arrives, then the quick stop's own.
+TEST(Cia402Axis, AQuickStopReportedBehindAnOlderEnabledIsStillTheOneAskedFor) {
+  Cia402Axis axis(joint());
+  DriveStateMachine drive;
+  walk(axis, drive);
+  (void)axis.quick_stop();
+  (void)axis.command(1.0);
+  axis.take({cia402::statusword_for(State::kOperationEnabled), 0, 0});  // sampled before the quick stop
+  axis.take({cia402::statusword_for(State::kQuickStopActive), 0, 0});   // the quick stop, late
+  EXPECT_FALSE(axis.failed());
+  axis.take({cia402::statusword_for(State::kOperationEnabled), 0, 0});  // the resume
+  axis.take({cia402::statusword_for(State::kFault), 0, 0});
+  EXPECT_TRUE(axis.failed()) << "a fault is one at once";
 }
 
 TEST(Cia402Axis, RefusesAConfigurationThatIsNotPhysical) {

@@ -58,8 +58,11 @@ class Cia402Axis {
   bool holding() const { return quick_stop_asked_ && state() == can::cia402::State::kQuickStopActive; }
   /// The drive has left operation enabled since it was enabled other than into the quick stop the
   /// master asked for: a fault, its own quick stop (a lost master), a power-off. (A fault found
-  /// before the first enable is not a failure: the walk resets it.)
+  /// before the first enable is not a failure: the walk resets it.) A quick stop asked for counts
+  /// as asked until the drive has reported enabled kResumeReports times in a row after the resume
+  /// (its report of the quick stop may still be on its way behind an older one of enabled).
   bool failed() const;
+  static constexpr unsigned kResumeReports = 16;
 
   /// The command for the next cycle: while not enabled, the next step of the walk to operation
   /// enabled at zero torque; from a quick stop the master asked for, enable operation at once
@@ -89,6 +92,7 @@ class Cia402Axis {
   uint16_t controlword_ = 0;
   bool quick_stop_asked_ = false;  // until the drive shows enabled after the master resumed it
   bool resume_sent_ = false;       // enable operation sent since the quick stop
+  unsigned enabled_reports_ = 0;   // reports of enabled in a row since then
   bool was_enabled_ = false;
   bool failed_ = false;
   uint64_t clamped_ = 0;
