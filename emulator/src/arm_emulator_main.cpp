@@ -1,7 +1,7 @@
 // teleop_arm_emulator: an arm of CiA 402 torque drives as a process on SocketCAN, for HIL: one
 // emulated drive per joint (one raw socket each, filtered to its node's frames) turning the
-// MuJoCo arm, both stepped in real time at 1 kHz, so that the follower's `hardware: canopen`,
-// candump or cansend can talk to them:
+// MuJoCo arm, both stepped by the real time elapsed (at 1 kHz where the host keeps it), so that
+// the follower's `hardware: canopen`, candump or cansend can talk to them:
 //   teleop_arm_emulator --drives FOLLOWER_YAML [--plant FOLLOWER_YAML] [--duration S]
 // --drives: a follower configuration with `hardware: canopen`: its `canopen.drives` say which
 // drive is on which interface with which node id and mechanics (docs/robots.md).
@@ -11,6 +11,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <climits>
 #include <csignal>
 #include <cstdio>
 #include <memory>
@@ -32,6 +34,7 @@ volatile std::sig_atomic_t g_stop = 0;
 void on_signal(int) { g_stop = 1; }
 
 constexpr double kStepS = 1e-3;
+constexpr int64_t kMaxStepNs = 5'000'000;
 
 void print_drives(const teleop::drive::DriveGroup& drives, const teleop::robot::ArmState& arm) {
   for (size_t k = 0; k < drives.drives(); ++k) {
@@ -76,6 +79,9 @@ int main(int argc, char** argv) {
     for (const teleop::robot::CanopenJointConfig& joint : drives->config().joints) {
       teleop::can::SocketCanOptions options;
       options.filters = teleop::can::canopen_node_filters(joint.node);
+      // and the master's heartbeat, which the drive consumes (0x1016): without it the drive never
+      // starts watching its master and keeps applying the last torque after the master died
+      options.filters.push_back({0x700u + drives->config().master_node, 0x7FF});
       buses.push_back(std::make_unique<teleop::can::SocketCanBus>(joint.bus, options));
       endpoints.push_back(buses.back().get());
     }
@@ -89,10 +95,19 @@ int main(int argc, char** argv) {
   teleop::MonotonicClock clock;
   teleop::RatePacer pacer(clock, static_cast<int64_t>(kStepS * 1e9));
   pacer.start();
-  const auto steps = static_cast<uint64_t>(duration_s / kStepS);
-  for (uint64_t k = 0; !g_stop && (steps == 0 || k < steps); ++k) {
-    (void)pacer.wait_next();
-    emulated->step(kStepS);
+  const int64_t start_ns = clock.now_ns();
+  const int64_t end_ns = duration_s > 0.0 ? start_ns + static_cast<int64_t>(duration_s * 1e9) : INT64_MAX;
+  int64_t stepped_ns = start_ns;
+  while (!g_stop && stepped_ns < end_ns) {
+    const teleop::CycleTick tick = pacer.wait_next();
+    // by the real time elapsed, so that the drives' clocks (their heartbeats, their watch of the
+    // master's) keep the master's pace where a wake comes late; in pieces of at most 5 ms, so that
+    // where the arm cannot be simulated in real time (QEMU without KVM: a MuJoCo step takes 2 ms)
+    // the drives still answer every few milliseconds, and the arm and its drives run slower than
+    // real time together (a time-dilated plant) rather than in bursts of 50 ms
+    const int64_t elapsed_ns = std::min<int64_t>(tick.now_ns - stepped_ns, kMaxStepNs);
+    stepped_ns = tick.now_ns;
+    emulated->step(static_cast<double>(elapsed_ns) * 1e-9);
   }
   print_drives(emulated->drives(), emulated->plant().state());
   const teleop::PacerStats& s = pacer.stats();
