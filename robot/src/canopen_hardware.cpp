@@ -15,10 +15,7 @@ std::vector<std::string> CanopenHardware::interfaces(const CanopenHardwareConfig
   return names;
 }
 
-namespace {
-
-// the bus configuration of one interface: its drives in the joints' order, the shared timing
-CanopenBusConfig bus_config(const CanopenHardwareConfig& config, const std::string& interface, double sync_period_s) {
+CanopenBusConfig canopen_bus_config(const CanopenHardwareConfig& config, const std::string& interface, double sync_period_s) {
   CanopenBusConfig bus;
   for (const CanopenJointConfig& j : config.joints) {
     if (j.bus == interface) bus.drives.push_back({j.node, j.axis});
@@ -33,8 +30,6 @@ CanopenBusConfig bus_config(const CanopenHardwareConfig& config, const std::stri
   return bus;
 }
 
-}  // namespace
-
 CanopenHardware::CanopenHardware(const CanopenHardwareConfig& config, double period_s, std::vector<can::CanBus*> buses,
                                  const SdoWait& wait, Clock clock, std::vector<std::unique_ptr<can::CanBus>> owned)
     : config_(config), owned_(std::move(owned)), clock_(std::move(clock)), name_("canopen:") {
@@ -43,7 +38,7 @@ CanopenHardware::CanopenHardware(const CanopenHardwareConfig& config, double per
   for (size_t b = 0; b < names.size(); ++b) {
     name_ += (b == 0 ? "" : ",") + names[b];
     try {
-      buses_.push_back(std::make_unique<CanopenArmBus>(*buses[b], bus_config(config, names[b], period_s * config.sync_divider)));
+      buses_.push_back(std::make_unique<CanopenArmBus>(*buses[b], canopen_bus_config(config, names[b], period_s * config.sync_divider)));
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(names[b] + ": " + e.what());
     }
@@ -177,13 +172,14 @@ HardwareLimits CanopenHardware::limits() const {
 }
 
 void CanopenHardware::report_counters(std::vector<std::pair<std::string, double>>& counters) const {
-  double clamped = 0, incomplete = 0, emcys = 0, refused = 0, fault_node = 0, fault_emcy = 0;
+  double clamped = 0, incomplete = 0, emcys = 0, refused = 0, fault = 0, fault_node = 0, fault_emcy = 0;
   for (const auto& bus : buses_) {
     for (size_t k = 0; k < bus->size(); ++k) clamped += static_cast<double>(bus->axis(k).clamped_commands());
     incomplete += static_cast<double>(bus->stats().incomplete_cycles);
     emcys += static_cast<double>(bus->stats().emcys);
     refused += static_cast<double>(bus->stats().sends_refused);
-    if (fault_node == 0 && bus->fault().fault != BusFault::kNone) {
+    if (fault == 0 && bus->fault().fault != BusFault::kNone) {
+      fault = static_cast<double>(bus->fault().fault);
       fault_node = bus->fault().node;
       fault_emcy = bus->fault().emcy_code;
     }
@@ -192,6 +188,8 @@ void CanopenHardware::report_counters(std::vector<std::pair<std::string, double>
   counters.emplace_back("canopen_cycles_feedback_missing", incomplete);
   counters.emplace_back("canopen_emcys", emcys);
   counters.emplace_back("canopen_frames_refused", refused);
+  // which BusFault (1 EMCY, 2 heartbeat lost, 3 drive rebooted, 4 bus-off, 5 send refused), of which node
+  counters.emplace_back("canopen_fault", fault);
   counters.emplace_back("canopen_fault_node", fault_node);
   counters.emplace_back("canopen_fault_emcy_code", fault_emcy);
 }

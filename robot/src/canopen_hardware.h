@@ -18,6 +18,11 @@
 
 namespace teleop::robot {
 
+/// The bus configuration of `interface`: its drives in the joints' order, the shared timing, a
+/// SYNC every `sync_period_s` (for the load check, canopen_bus_load()).
+CanopenBusConfig canopen_bus_config(const CanopenHardwareConfig& config, const std::string& interface,
+                                    double sync_period_s);
+
 class CanopenHardware final : public RobotHardware {
  public:
   using Clock = std::function<int64_t()>;  // monotonic [ns]

@@ -131,8 +131,9 @@ TEST(CanopenHardware, OneFailedDriveMakesEveryDriveHold) {
   EXPECT_EQ(rig.drive(2).state(), State::kFault);
   std::vector<std::pair<std::string, double>> counters;
   hw->report_counters(counters);
-  EXPECT_EQ(counters[4], (std::pair<std::string, double>{"canopen_fault_node", 5}));
-  EXPECT_EQ(counters[5], (std::pair<std::string, double>{"canopen_fault_emcy_code", can::emcy::kOverCurrent}));
+  EXPECT_EQ(counters[4], (std::pair<std::string, double>{"canopen_fault", static_cast<double>(BusFault::kEmcy)}));
+  EXPECT_EQ(counters[5], (std::pair<std::string, double>{"canopen_fault_node", 5}));
+  EXPECT_EQ(counters[6], (std::pair<std::string, double>{"canopen_fault_emcy_code", can::emcy::kOverCurrent}));
 }
 
 // What CiA 402 asks of a master that sees a drive's EMCY: the other drives on quick stop within
