@@ -184,8 +184,7 @@ void CanopenArmBus::take(const CanFrame& frame, int64_t now_ns) {
       if (can::decode_pdo(frame, tpdo_, v) != can::CanError::kNone) return;
       const AxisFeedback feedback{static_cast<uint16_t>(v[2]), static_cast<int32_t>(can::sign_extend(v[0], 32)),
                                   static_cast<int16_t>(can::sign_extend(v[1], 16))};
-      const uint64_t periods = stats_.syncs - feedback_seen_[k];
-      axes_[k].take(feedback, feedback_seen_[k] == 0 ? 0.0 : static_cast<double>(periods) * config_.sync_period_s);
+      axes_[k].take(feedback, sampling_interval_s(feedback_seen_[k]));
       feedback_seen_[k] = stats_.syncs;
       ++stats_.tpdos;
       return;
@@ -224,6 +223,15 @@ void CanopenArmBus::receive(int64_t now_ns) {
   }
 }
 
+double CanopenArmBus::sampling_interval_s(uint64_t previous_sync) const {
+  if (previous_sync == 0) return 0.0;
+  const uint64_t periods = stats_.syncs - previous_sync;
+  // the drives sample at the SYNC: the time between the two SYNCs as they were sent, which a
+  // master that skipped cycles sent further apart than its period; older than the record: nominal
+  if (periods >= sync_ns_.size()) return static_cast<double>(periods) * config_.sync_period_s;
+  return static_cast<double>(sync_ns_[stats_.syncs % sync_ns_.size()] - sync_ns_[previous_sync % sync_ns_.size()]) * 1e-9;
+}
+
 int64_t CanopenArmBus::feedback_sampled_ns() const {
   const uint64_t oldest = *std::min_element(feedback_seen_.begin(), feedback_seen_.end());
   if (oldest == 0 || stats_.syncs - oldest >= sync_ns_.size()) return 0;
@@ -234,7 +242,7 @@ bool CanopenArmBus::feedback_complete() const {
   return std::all_of(feedback_seen_.begin(), feedback_seen_.end(), [&](uint64_t seen) { return seen == stats_.syncs; });
 }
 
-void CanopenArmBus::send(int64_t now_ns) {
+void CanopenArmBus::send(int64_t now_ns, bool heartbeat) {
   auto put = [&](const can::Result<CanFrame>& frame) {
     if (!frame.ok()) return;
     const CanStatus status = bus_.send(*frame);
@@ -251,7 +259,7 @@ void CanopenArmBus::send(int64_t now_ns) {
   put(can::encode_sync());
   ++stats_.syncs;
   sync_ns_[stats_.syncs % sync_ns_.size()] = now_ns;
-  if (now_ns >= next_heartbeat_ns_) {
+  if (heartbeat && now_ns >= next_heartbeat_ns_) {
     put(can::encode_heartbeat(config_.master_node, can::NmtState::kOperational));
     next_heartbeat_ns_ = std::max(next_heartbeat_ns_ + int64_t{config_.master_heartbeat_ms} * 1'000'000, now_ns);
   }

@@ -78,8 +78,11 @@ class CanopenArmBus {
   /// Takes every frame waiting on the bus into the axes and the supervision. Real-time safe.
   void receive(int64_t now_ns);
   /// Sends each axis's command (set by command()), then the SYNC that applies them, and the
-  /// master's heartbeat when it is due. Real-time safe.
-  void send(int64_t now_ns);
+  /// master's heartbeat when it is due, unless `heartbeat` is false: during the start-up walk, so
+  /// that the drives (whose watch starts with the first heartbeat) watch their master only once
+  /// its cycle runs; the time between the walk and the first cycle (the node's network start-up,
+  /// hundreds of milliseconds) would count as a lost master. Real-time safe.
+  void send(int64_t now_ns, bool heartbeat = true);
 
   size_t size() const { return axes_.size(); }
   Cia402Axis& axis(size_t k) { return axes_[k]; }
@@ -101,6 +104,8 @@ class CanopenArmBus {
   void take(const can::CanFrame& frame, int64_t now_ns);
   void latch(BusFault fault, can::NodeId node, uint16_t emcy_code = 0);
   int index_of(can::NodeId node) const;
+  /// Seconds between the SYNC of `previous_sync` and the last one sent (0: no previous sample).
+  double sampling_interval_s(uint64_t previous_sync) const;
 
   can::CanBus& bus_;
   CanopenBusConfig config_;

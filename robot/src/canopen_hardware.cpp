@@ -61,7 +61,7 @@ void CanopenHardware::start_cycle(const SdoWait& wait, Command command) {
   const int64_t now = clock_();
   for (auto& bus : buses_) bus->receive(now);
   for (const Joint& j : joints_) buses_[j.bus]->command(j.axis, command(axis(j)));
-  for (auto& bus : buses_) bus->send(now);
+  for (auto& bus : buses_) bus->send(now, false);  // no heartbeat yet (CanopenArmBus::send)
   if (wait.pump) {
     wait.pump();
   } else {
