@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Runs a test command where a vcan interface exists.
 #   run_in_vm.sh [--cache DIR] [--timeout S] [--vm] --bin FILE [--bin FILE ...] [--data DIR ...] -- COMMAND [ARGS...]
-# Host with vcan (root, `ip link add type vcan` works): creates a private vcan interface, runs
-# COMMAND directly with the --bin folders on PATH and TELEOP_VCAN_IF set, deletes the interface.
+# Host with vcan (root, `ip link add type vcan` works): creates four private vcan interfaces, runs
+# COMMAND directly with the --bin folders on PATH, TELEOP_VCAN_IF (the first) and TELEOP_VCAN_IFS
+# (all four) set, deletes the interfaces.
 # Otherwise: boots Debian's kernel in qemu (TCG is fine) from an initramfs holding busybox, the
 # CAN modules, iproute2's ip, candump/cansend, the --bin files and every library ldd lists;
-# inside, loads can, can-raw, can-dev, vcan, creates vcan0, runs COMMAND (the --data folders in
+# inside, loads can, can-raw, can-dev, vcan, creates vcan0..vcan3, runs COMMAND (the --data folders in
 # /opt/teleop/share/teleop/, where the binaries in /opt/teleop/bin look for teleop's data), prints
 # "TELEOP_VCAN_RESULT PASS|FAIL rc=N" on the serial console and powers off. This script exits
 # with COMMAND's status; with 1 when anything is missing (never skips) or no result came back
@@ -40,13 +41,16 @@ elapsed() { echo "$(( ($(date +%s%N) - start_ns) / 1000000 )) ms"; }
 if [ "$force_vm" -eq 0 ] && [ "$(id -u)" -eq 0 ] && command -v ip >/dev/null; then
   probe="tvcan$$"
   if ip link add dev "$probe" type vcan 2>/dev/null; then
-    trap 'ip link del dev "$probe" 2>/dev/null || true' EXIT
-    ip link set up "$probe"
+    # three more for the arm's four buses (TELEOP_VCAN_IFS; the VM's are vcan0..vcan3)
+    probes="$probe"
+    for i in 1 2 3; do ip link add dev "$probe-$i" type vcan && probes="$probes $probe-$i"; done
+    trap 'for p in $probes; do ip link del dev "$p" 2>/dev/null || true; done' EXIT
+    for p in $probes; do ip link set up "$p"; done
     path_add=""
     for b in "${bins[@]}"; do path_add="$path_add$(cd "$(dirname "$b")" && pwd):"; done
     echo "run_in_vm: host kernel has vcan: running directly on $probe"
     set +e
-    PATH="$path_add$PATH" TELEOP_VCAN_IF="$probe" "$@"
+    PATH="$path_add$PATH" TELEOP_VCAN_IF="$probe" TELEOP_VCAN_IFS="$probes" "$@"
     rc=$?
     set -e
     echo "run_in_vm: direct run rc=$rc after $(elapsed)"
@@ -178,7 +182,7 @@ log="$work/console.log"
 boot_timeout_s=${TELEOP_VCAN_BOOT_TIMEOUT:-90}
 run_vm() {
   : > "$log"
-  timeout --kill-after=10 "$timeout_s" "$qemu" -m 512 -smp 2 -nographic -no-reboot \
+  timeout --kill-after=10 "$timeout_s" "$qemu" -m 1536 -smp 2 -nographic -no-reboot \
     -kernel "$vmlinuz" -initrd "$work/initrd.gz" -append "console=ttyS0 quiet panic=-1" \
     < /dev/null > "$log" 2>&1 &
   local qpid=$! waited=0 booted=0

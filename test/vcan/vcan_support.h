@@ -4,6 +4,7 @@
 // the test binaries, teleop_hand_emulator, cansend and candump on PATH.
 
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -55,6 +56,8 @@ class ChildProcess {
   }
   /// Sends a signal (SIGUSR1: the emulator releases its object's support).
   bool signal(int sig) const { return pid_ > 0 && ::kill(pid_, sig) == 0; }
+  /// Sets its nice value (below 0, as root: it goes before the other processes).
+  bool set_nice(int nice) const { return pid_ > 0 && ::setpriority(PRIO_PROCESS, static_cast<id_t>(pid_), nice) == 0; }
   /// SIGTERM and wait; the wait status (-1 when not running).
   int stop() {
     if (pid_ <= 0) return -1;

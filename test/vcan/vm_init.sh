@@ -1,5 +1,5 @@
 #!/bin/busybox sh
-# /init of the vcan test VM (see run_in_vm.sh): CAN modules, vcan0, the test command, result.
+# /init of the vcan test VM (see run_in_vm.sh): CAN modules, vcan0..vcan3, the test command, result.
 /bin/busybox --install -s /bin
 export PATH=/opt/teleop/bin:/bin
 mount -t proc proc /proc
@@ -16,8 +16,11 @@ for m in /lib/modules/*.ko; do
   insmod "$m" || result FAIL 90
 done
 ip link set lo up
-ip link add dev vcan0 type vcan || result FAIL 91
-ip link set up vcan0 || result FAIL 92
+# vcan0 for the hand; vcan0..vcan3 for the arm's four buses (two drives per bus at 1 kHz)
+for i in 0 1 2 3; do
+  ip link add dev vcan$i type vcan || result FAIL 91
+  ip link set up vcan$i || result FAIL 92
+done
 echo "TELEOP_VCAN_BEGIN uptime=$(cut -d' ' -f1 /proc/uptime)s"
 sh /opt/teleop/cmd.sh
 rc=$?
