@@ -4,7 +4,10 @@
 
 #include <string>
 
+#include "canopen_arm_bus.h"
+#include "canopen_hardware.h"
 #include "follower_section.h"
+#include "teleop/common/config.h"
 #include "teleop/robot/canopen_backend.h"
 
 namespace teleop::robot {
@@ -53,6 +56,22 @@ TEST(CanopenHardwareConfig, NamesTheKeyOfWhatCannotWork) {
                      "encoder_ticks_per_rev: 1, rated_torque_mnm: 1, max_torque_nm: 1}\n")
                 .find("node"),
             std::string::npos);
+}
+
+// The shipped example (config/nodes/follower_canopen_arm.yaml): seven drives on four buses, each
+// bus within the load the master accepts at 1 kHz (the VM HIL runs it; docs/can_bus_budget.md).
+TEST(CanopenHardwareConfig, TheShippedExampleIsSevenDrivesOnFourBusesEachWithinTheLoadLimit) {
+  const CanopenHardwareConfig c =
+      parse_canopen_hardware(ConfigNode::load_file(std::string(TELEOP_SOURCE_DIR) + "/config/nodes/follower_canopen_arm.yaml")
+                                 .child("follower"))
+          ->config();
+  ASSERT_EQ(c.joints.size(), 7u);
+  const std::vector<std::string> buses = CanopenHardware::interfaces(c);
+  EXPECT_EQ(buses, (std::vector<std::string>{"can0", "can1", "can2", "can3"}));
+  for (const std::string& bus : buses) {
+    const can::BusLoad load = canopen_bus_load(canopen_bus_config(c, bus, 1e-3 * c.sync_divider));
+    EXPECT_FALSE(load.exceeds()) << bus << ": " << 100.0 * load.load_worst_case << " %";
+  }
 }
 
 }  // namespace
