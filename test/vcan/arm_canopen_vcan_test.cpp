@@ -256,25 +256,30 @@ class ArmOnVcan : public ::testing::Test {
     return true;
   }
 
-  /// Writes the emulator's fault injection object of `drive` (an expedited SDO from this test).
-  void inject(const DriveAt& drive, uint8_t subindex, uint32_t value) {
+  /// Calls f(sdo) with an SDO client of this test's own to `drive` (its answers only).
+  template <typename F>
+  static void with_sdo(const DriveAt& drive, F f) {
     can::SocketCanBus bus(arm_interfaces()[drive.bus], {.filters = {{static_cast<uint32_t>(0x580 + drive.node), 0x7FF}}});
     SdoWait wait;
     wait.timeout = 5s;  // the emulator answers from a starved VM
-    SdoClient(bus, wait).write(drive.node, drive::drive_od::kFaultInjection, subindex, value, 4);
+    SdoClient sdo(bus, wait);
+    f(sdo);
+  }
+
+  /// Writes the emulator's fault injection object of `drive`.
+  void inject(const DriveAt& drive, uint8_t subindex, uint32_t value) {
+    with_sdo(drive, [&](SdoClient& sdo) { sdo.write(drive.node, drive::drive_od::kFaultInjection, subindex, value, 4); });
   }
 
   /// Every drive's state (0x6041) and position (0x6064, ticks), read by SDO.
   std::vector<std::pair<can::cia402::State, int32_t>> read_drives() {
     std::vector<std::pair<can::cia402::State, int32_t>> out;
     for (const DriveAt& d : drives_) {
-      can::SocketCanBus bus(arm_interfaces()[d.bus], {.filters = {{static_cast<uint32_t>(0x580 + d.node), 0x7FF}}});
-      SdoWait wait;
-      wait.timeout = 5s;
-      SdoClient sdo(bus, wait);
-      const auto sw = static_cast<uint16_t>(sdo.read(d.node, can::cia402::od::kStatusword, 0));
-      const auto q = static_cast<int32_t>(sdo.read(d.node, can::cia402::od::kPositionActualValue, 0));
-      out.emplace_back(can::cia402::state_from_statusword(sw), q);
+      with_sdo(d, [&](SdoClient& sdo) {
+        const auto sw = static_cast<uint16_t>(sdo.read(d.node, can::cia402::od::kStatusword, 0));
+        const auto q = static_cast<int32_t>(sdo.read(d.node, can::cia402::od::kPositionActualValue, 0));
+        out.emplace_back(can::cia402::state_from_statusword(sw), q);
+      });
     }
     return out;
   }
@@ -310,7 +315,7 @@ TEST_F(ArmOnVcan, BusLoadAsComputedAndAnEmcyQuickStopsEveryDriveWithinTwoSyncs) 
     ASSERT_GT(m.syncs, 100u) << "the cyclic traffic flowed";
     CanopenBusConfig at_measured = canopen_bus_config(config_, names[b], m.seconds / static_cast<double>(m.syncs));
     const size_t master_beats = can::test::count_between(steady, b, Service::kHeartbeat, config_.master_node, m.from_ns, m.to_ns);
-    size_t drive_beats = can::test::count_between(steady, b, Service::kHeartbeat, 0, m.from_ns, m.to_ns) - master_beats;
+    const size_t drive_beats = can::test::count_between(steady, b, Service::kHeartbeat, 0, m.from_ns, m.to_ns) - master_beats;
     ASSERT_GT(master_beats, 0u);
     ASSERT_GT(drive_beats, 0u);
     const double master_period_ms = 1e3 * m.seconds / static_cast<double>(master_beats);
