@@ -35,13 +35,16 @@ domain_max=${BASH_REMATCH[2]}
 
 # what each role may do; topic names as in transport/include/teleop/transport/topics.h
 status=teleop/node_status
+# the stop chain (docs/stop_chain.md): every node honours emergency stops; the operator station
+# sends them (its device's button, `teleop estop|enable --config leader.yaml`)
+estop=teleop/emergency_stop
 # the operator station also sends resets (`teleop reset NODE --config leader.yaml`)
-leader_publish="teleop/leader/joint_command teleop/leader/cartesian_command teleop/leader/joint_state teleop/hand/command teleop/tdpa/leader_to_follower teleop/reset $status"
-leader_subscribe="teleop/follower/joint_state teleop/follower/wrench teleop/twin/feedback_torque teleop/twin/joint_state teleop/twin/contact_wrench/* teleop/twin/distances teleop/hand/state teleop/hand/joint_state teleop/tdpa/follower_to_leader $status"
+leader_publish="teleop/leader/joint_command teleop/leader/cartesian_command teleop/leader/joint_state teleop/hand/command teleop/tdpa/leader_to_follower teleop/reset $estop $status"
+leader_subscribe="$estop teleop/follower/joint_state teleop/follower/wrench teleop/twin/feedback_torque teleop/twin/joint_state teleop/twin/contact_wrench/* teleop/twin/distances teleop/hand/state teleop/hand/joint_state teleop/tdpa/follower_to_leader $status"
 follower_publish="teleop/follower/joint_state teleop/follower/wrench teleop/hand/state teleop/hand/joint_state teleop/tdpa/follower_to_leader $status"
-follower_subscribe="teleop/leader/joint_command teleop/leader/cartesian_command teleop/twin/joint_command teleop/hand/command teleop/tdpa/leader_to_follower teleop/reset $status"
+follower_subscribe="$estop teleop/leader/joint_command teleop/leader/cartesian_command teleop/twin/joint_command teleop/hand/command teleop/tdpa/leader_to_follower teleop/reset $status"
 twin_publish="teleop/twin/feedback_torque teleop/twin/joint_state teleop/twin/joint_command teleop/twin/contact_wrench/* teleop/twin/distances teleop/lockstep/state $status"
-twin_subscribe="teleop/leader/joint_state teleop/follower/joint_state teleop/follower/wrench teleop/hand/state teleop/lockstep/command $status"
+twin_subscribe="$estop teleop/leader/joint_state teleop/follower/joint_state teleop/follower/wrench teleop/hand/state teleop/lockstep/command $status"
 bench_echo_publish="teleop/follower/joint_state"
 bench_echo_subscribe="teleop/leader/joint_state"
 nodes="leader follower twin"

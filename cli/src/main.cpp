@@ -1,6 +1,6 @@
 // teleop: command-line entry point. `teleop launch demo` (a scenario's name or file) runs it, `teleop sweep`
 // one scenario under several network profiles, `teleop experiment` runs x profiles with metrics,
-// `teleop reset NODE` clears a node's latched reflex, `teleop plot RUN_DIR` draws a run's figures,
+// `teleop reset NODE` clears a node's latched reflex, `teleop estop`/`enable` (operator_request_commands.h), `teleop plot RUN_DIR` draws a run's figures,
 // `teleop hand-study STUDY.yaml` reproduces the SVH hand study in MuJoCo (hand_study_command.h),
 // `teleop fidelity-study STUDY.yaml` the coupling thesis's twin accuracy and wiping studies (fidelity_study_command.h);
 // `teleop topic`, `monitor`, `record`, `replay` (bus_commands.h) look at and keep the bus,
@@ -19,13 +19,13 @@
 #include "teleop/experiment/network_sweep.h"
 #include "teleop/experiment/soak.h"
 #include "teleop/launcher/launcher.h"
-#include "teleop/launcher/reset_request.h"
 #include "teleop/runtime/command_line_hint.h"
 #include "bag_commands.h"
 #include "bus_commands.h"
 #include "config_option.h"
 #include "fidelity_study_command.h"
 #include "hand_study_command.h"
+#include "operator_request_commands.h"
 #include "plot_command.h"
 #include "view_command.h"
 
@@ -110,16 +110,7 @@ int main(int argc, char** argv) {
   soak_cmd->add_option("--domain", soak_options.domain_id, "DDS domain id for every node")->check(CLI::Range(0, 232));
   soak_cmd->add_option("--report-dir", soak_options.report_dir, "traces, reports and logs (default: a new folder in /tmp)");
   soak_cmd->add_option("--bin-dir", soak_options.bin_dir, "directory of the node executables");
-  ResetOptions reset_options;
-  CLI::App* reset_cmd = app.add_subcommand("reset", "ask a node to clear its latched reflex and follow its commands again");
-  reset_cmd->add_option("node", reset_options.target, "the node's name (e.g. follower)")->required();
-  reset_cmd->add_option("-c,--config", reset_options.config_path,
-                        "take domain, discovery and security from this node config (a file, or a name in config/nodes)")
-      ->transform(teleop::cli::named_config("nodes"))
-      ->check(CLI::ExistingFile);
-  reset_cmd->add_option("--domain", reset_options.domain_id, "DDS domain id (overrides the config)")->check(CLI::Range(0, 232));
-  reset_cmd->add_option("--timeout", reset_options.timeout_s, "seconds to wait for the node to acknowledge")
-      ->check(CLI::Range(0.1, 600.0));
+  const teleop::cli::OperatorRequestCommands operator_requests(app);
   BusCommands bus_commands(app);
   const teleop::cli::BagCommands bag_commands(app);
   const teleop::cli::PlotCommand plot(app);
@@ -139,15 +130,7 @@ int main(int argc, char** argv) {
     if (plot.parsed()) return plot.run();
     if (hand_study.parsed()) return hand_study.run();
     if (fidelity_study.parsed()) return fidelity_study.run();
-    if (reset_cmd->parsed()) {
-      if (send_reset(reset_options)) {
-        std::printf("reset sent to %s and acknowledged\n", reset_options.target.c_str());
-        return 0;
-      }
-      std::fprintf(stderr, "teleop reset: no reader of %s acknowledged within %.1f s (is the node running on this domain?)\n",
-                   teleop::transport::topics::kResetRequest.name, reset_options.timeout_s);
-      return 1;
-    }
+    if (const auto rc = operator_requests.run()) return *rc;
     if (soak_cmd->parsed()) {
       using namespace teleop::experiment;
       const SoakResult result = run_soak(load_soak(soak_path), soak_options);

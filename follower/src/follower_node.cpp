@@ -132,6 +132,24 @@ void FollowerNode::take(transport::Subscription<Command>& commands, Source sourc
   ++command_sessions_;
 }
 
+void FollowerNode::emergency_stop(bool engaged) {
+  emergency_stopped_ = engaged;
+  // an enable resumes as after a hold: the watchdog joins fresh commands from the held pose
+  if (!engaged || state_ == msg::STATE_FAULT) return;
+  state_ = msg::STATE_SAFE_HOLD;
+  hold_cause_ = msg::FAULT_EMERGENCY_STOP;
+  coming_to_rest_ = true;
+  architecture_->restart();
+}
+
+void FollowerNode::bring_to_rest() {
+  constexpr double kAtRestRadps = 0.02;
+  hold_current_pose(active_, config_.hold_stiffness_nm_per_rad, config_.hold_damping_nms_per_rad);
+  double fastest = 0.0;
+  for (size_t i = 0; i < config_.joints; ++i) fastest = std::max(fastest, std::abs(arm_.dq_radps[i]));
+  if (fastest < kAtRestRadps) coming_to_rest_ = false;
+}
+
 void FollowerNode::take_reset_requests() {
   while (reset_requests_.take_next(reset_request_)) {
     if (reset_request_.target() != name_) continue;
@@ -160,8 +178,8 @@ bool FollowerNode::source_lost(double silence_s) const {
 }
 
 void FollowerNode::run_watchdog(int64_t now_ns, bool stalled, bool robot_current) {
-  // a hardware fault is not cleared by commands arriving: it needs an operator
-  if (state_ == msg::STATE_FAULT) return;
+  // a hardware fault is not cleared by commands arriving, nor an emergency stop: both need an operator
+  if (state_ == msg::STATE_FAULT || emergency_stopped_) return;
   const double silence_s = static_cast<double>(now_ns - last_valid_command_ns_) * 1e-9;
   const bool lost = source_lost(silence_s);
   // our own loop missed more than the timeout: what was drained now is a backlog, and the newest
@@ -295,9 +313,11 @@ void FollowerNode::cycle(const CycleTick& tick) {
   // the watchdog counts control cycles (their deadlines): a cycle released late neither
   // shortens nor stretches the timeout
   const bool stalled = stall_watch_.stalled(tick);
-  take_commands(tick.deadline_ns);
+  // stopped, no command is taken: the newest waits in its reader for the enable
+  if (!emergency_stopped_) take_commands(tick.deadline_ns);
   take_reset_requests();
   run_watchdog(tick.deadline_ns, stalled, robot_current);
+  if (emergency_stopped_ && coming_to_rest_ && robot_current) bring_to_rest();
   if (!robot_current) ++robot_stale_cycles_;
   const bool written = robot_current ? command_robot() : hardware_->hold() == robot::HardwareStatus::kOk;
   // a robot that refuses a command or cannot be read is a fault: hold what we have, report it

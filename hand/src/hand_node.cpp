@@ -99,7 +99,16 @@ void HandNode::take_command() {
   }
   targets_.enable = c.enable();
   targets_.fault_reset = c.fault_reset();
-  adapter_.set_command(targets_);
+  if (!emergency_stopped_) adapter_.set_command(targets_);
+}
+
+void HandNode::emergency_stop(bool engaged) {
+  emergency_stopped_ = engaged;
+  // the newest command again at the enable; until then the hand's own quick stop and hold
+  HandTargets targets = targets_;
+  if (engaged) targets.enable = false;
+  targets.fault_reset = false;
+  adapter_.set_command(targets);
 }
 
 void HandNode::cycle(const CycleTick& tick) {

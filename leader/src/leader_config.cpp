@@ -51,7 +51,24 @@ OperatorMotionConfig parse_motion(const ConfigNode& s, size_t joints, const Join
   m.amplitude_rad = read_joint_list(s, "amplitudes_rad", joints, Range{-M_PI, M_PI}, amplitude);
   m.frequency_hz = s.get_double("frequency_hz", Range{0, 50}, m.frequency_hz);
   m.ramp_s = s.get_double("ramp_s", Range{0, 60}, m.ramp_s);
+  for (const ConfigNode& p : s.get_node_list("button_presses")) {
+    m.presses.push_back({static_cast<uint32_t>(p.get_int("button", Range{0, kMaxButton})), p.get_double("at_s", Range{0, 1e6}),
+                         p.get_double("hold_s", Range{1e-3, 1e6}, 0.2)});
+  }
   return m;
+}
+
+// what the device's buttons do; -1: no button does it
+StopButtons parse_stop_buttons(const ConfigNode& s) {
+  StopButtons b;
+  const auto buttons = s.optional_child("buttons");
+  if (!buttons) return b;
+  b.emergency_stop = static_cast<int>(buttons->get_int("emergency_stop", Range{-1, kMaxButton}, -1));
+  b.enable = static_cast<int>(buttons->get_int("enable", Range{-1, kMaxButton}, -1));
+  if (b.enable >= 0 && b.enable == b.emergency_stop) {
+    throw buttons->error("enable", "is the emergency stop's button too: an enable must be a deliberate other act");
+  }
+  return b;
 }
 
 void parse_feedback(const ConfigNode& s, LeaderConfig& c) {
@@ -90,6 +107,7 @@ LeaderConfig parse_leader_config(const ConfigNode& root, const DeviceRegistry& d
     }
   }
   parse_feedback(s, c);
+  c.stop_buttons = parse_stop_buttons(s);
   const auto teleoperation = runtime::parse_teleoperation_config(root);
   if (!teleoperation) throw root.error("teleoperation", "the leader needs a teleoperation section (architecture)");
   c.teleoperation = *teleoperation;

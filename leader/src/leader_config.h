@@ -29,6 +29,15 @@ struct CartesianGains {
   double nullspace_stiffness_nm_per_rad = 10.0;
 };
 
+/// The device's buttons of the stop chain (docs/stop_chain.md), by index; -1: none.
+struct StopButtons {
+  int emergency_stop = -1;
+  int enable = -1;
+};
+
+/// The highest button index a configuration may name (DeviceState::buttons is 32 bits).
+inline constexpr int64_t kMaxButton = 31;
+
 struct LeaderConfig {
   /// Which hand of a two-handed station this is ("" for a one-arm station): names its topics
   /// (transport/arm_topic.h) and those of the follower's arm it commands.
@@ -61,6 +70,8 @@ struct LeaderConfig {
   /// `leader.hand` (optional): the simulated operator's hand, a HandCommand plan for the
   /// teleop_hand node (hand_plan.h); without it the leader commands no hand.
   std::optional<HandPlan> hand;
+  /// `leader.buttons`: the device's emergency stop and enable buttons.
+  StopButtons stop_buttons;
 };
 
 /// The recorded operator motion whose CSV file is `section.key` (joints and column prefix from

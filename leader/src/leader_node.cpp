@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "architectures/leader_architectures.h"
@@ -16,6 +17,7 @@ LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context
       period_s_(1.0 / context.node.rate_hz),
       device_state_(context.participant, transport::arm_topic(transport::topics::kLeaderState, config.arm),
                     context.node.name),
+      stop_requests_(context.participant, transport::topics::kEmergencyStop, context.node.name),
       follower_state_(context.participant, transport::arm_topic(transport::topics::kFollowerState, config.arm)),
       follower_wrench_(context.participant, transport::arm_topic(transport::topics::kFollowerWrench, config.arm)),
       twin_feedback_(context.participant, transport::arm_topic(transport::topics::kTwinFeedback, config.arm)),
@@ -91,6 +93,33 @@ void LeaderNode::move_device(double t_s) {
   motion_.intended_torque(t_s, intent_.tau_nm);
   device_impl_->set_operator_intent(intent_);
   if (!device_impl_->read(device_)) ++device_faults_;
+  // the simulated operator's presses (leader.button_presses) on top of what the device reports
+  device_.buttons |= motion_.pressed_buttons(t_s);
+}
+
+void LeaderNode::send_stop_requests(int64_t now_ns) {
+  const auto pressed = [&](int button) { return button >= 0 && (device_.buttons >> button & 1u) != 0; };
+  const auto was_pressed = [&](int button) { return button >= 0 && (buttons_before_ >> button & 1u) != 0; };
+  const StopButtons& b = config_.stop_buttons;
+  constexpr int64_t kRepeatNs = 100'000'000;
+  auto send = [&](bool engaged, int button) {
+    msg::EmergencyStop& s = stop_requests_.sample();
+    s.engaged(engaged);
+    s.target("");
+    char origin[64];
+    std::snprintf(origin, sizeof origin, "button %d of the leader's %s device", button, device_impl_->name());
+    s.origin(origin);
+    stop_requests_.publish();
+  };
+  if (pressed(b.emergency_stop) && (!was_pressed(b.emergency_stop) || now_ns - stop_sent_ns_ >= kRepeatNs)) {
+    send(true, b.emergency_stop);
+    stop_sent_ns_ = now_ns;
+    ++stops_sent_;
+  } else if (pressed(b.enable) && !was_pressed(b.enable) && !pressed(b.emergency_stop)) {
+    send(false, b.enable);
+    ++enables_sent_;
+  }
+  buttons_before_ = device_.buttons;
 }
 
 void LeaderNode::send_command(bool frozen) {
@@ -129,11 +158,13 @@ void LeaderNode::cycle(const CycleTick& tick) {
   update_state(tick.now_ns);
   // the operator keeps moving; what the follower is sent freezes while it is lost
   move_device(static_cast<double>(tick.index) * period_s_);
+  send_stop_requests(tick.now_ns);
   command_hand(static_cast<double>(tick.index) * period_s_);
-  send_command(state_ == msg::STATE_SAFE_HOLD);
+  send_command(state_ == msg::STATE_SAFE_HOLD || emergency_stopped_);
   const bool fresh = architecture_->feedback(mapped_device(), tick.now_ns, feedback_, rejected_feedback_);
-  // lost or stale source, or the follower gone: fade the feedback out, never cut it
-  renderer_.render(feedback_, config_.feedback_enabled && fresh && state_ == msg::STATE_RUNNING);
+  // lost or stale source, the follower gone, or an emergency stop: fade the feedback out, never cut it
+  renderer_.render(feedback_,
+                   config_.feedback_enabled && fresh && state_ == msg::STATE_RUNNING && !emergency_stopped_);
   if (!device_impl_->write(renderer_.output())) ++device_faults_;
   publish_device_state();
   update_trace_values();
@@ -174,6 +205,8 @@ void LeaderNode::fill_report(runtime::NodeReport& report) const {
   report.counters.emplace_back("cycles_not_in_command", static_cast<double>(cycles_not_in_command_));
   report.counters.emplace_back("in_command", authority_->in_command() ? 1.0 : 0.0);
   report.counters.emplace_back("device_faults", static_cast<double>(device_faults_));
+  report.counters.emplace_back("emergency_stops_sent", static_cast<double>(stops_sent_));
+  report.counters.emplace_back("enables_sent", static_cast<double>(enables_sent_));
   report.counters.emplace_back("rejected_feedback", static_cast<double>(rejected_feedback_));
   report.counters.emplace_back("feedback_peak_nm", renderer_.peak_nm());
   report.counters.emplace_back("feedback_saturations", static_cast<double>(renderer_.saturations()));

@@ -38,6 +38,8 @@ class LeaderNode final : public runtime::NodeLogic {
 
   void cycle(const CycleTick& tick) override;
   msg::NodeState state() const override { return state_; }
+  /// Engaged: the command freezes where it is and no force is rendered, until an enable.
+  void emergency_stop(bool engaged) override { emergency_stopped_ = engaged; }
   void active_faults(std::vector<uint32_t>& faults) const override;
   void fill_status(msg::NodeStatus& status) const override;
   void fill_report(runtime::NodeReport& report) const override;
@@ -58,6 +60,10 @@ class LeaderNode final : public runtime::NodeLogic {
   void send_command(bool frozen);
   MappedDevice mapped_device() const { return {q_cmd_, dq_cmd_, cartesian_, device_kinematics_.get()}; }
   void publish_device_state();
+  /// The device's stop-chain buttons to the bus: a stop on the press of its emergency stop (and
+  /// again while it stays pressed, as a latched mushroom button keeps saying stop), an enable on
+  /// the press of its enable button.
+  void send_stop_requests(int64_t now_ns);
   void command_hand(double t_s);
   void update_trace_values();
 
@@ -65,6 +71,7 @@ class LeaderNode final : public runtime::NodeLogic {
   double period_s_;
   transport::Publication<msg::JointState> device_state_;
   std::optional<transport::Publication<msg::HandCommand>> hand_command_;  // with leader.hand
+  transport::Publication<msg::EmergencyStop> stop_requests_;
   transport::Subscription<msg::JointState> follower_state_;
   transport::Subscription<msg::WrenchStamped> follower_wrench_;
   transport::Subscription<msg::JointTorque> twin_feedback_;
@@ -85,6 +92,11 @@ class LeaderNode final : public runtime::NodeLogic {
   FeedbackRenderer renderer_;
   Eigen::Vector3d felt_force_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d command_position_ = Eigen::Vector3d::Constant(std::nan(""));
+  bool emergency_stopped_ = false;
+  uint32_t buttons_before_ = 0;  // the device's buttons in the last cycle
+  int64_t stop_sent_ns_ = 0;     // when the last stop went out
+  uint64_t stops_sent_ = 0;
+  uint64_t enables_sent_ = 0;
   bool peer_was_lost_ = false;
   uint64_t peer_lost_events_ = 0;
   uint64_t not_in_command_events_ = 0;

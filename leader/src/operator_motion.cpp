@@ -37,6 +37,14 @@ void OperatorMotion::intended_torque(double t_s, JointVector& tau_nm) const {
   }
 }
 
+uint32_t OperatorMotion::pressed_buttons(double t_s) const {
+  uint32_t pressed = 0;
+  for (const ButtonPress& p : config_.presses) {
+    if (t_s >= p.at_s && t_s < p.at_s + p.hold_s) pressed |= uint32_t{1} << p.button;
+  }
+  return pressed;
+}
+
 void OperatorMotion::sine(double t_s, JointVector& q_rad, JointVector& dq_radps) const {
   const double w = 2 * M_PI * config_.frequency_hz;
   const Ramp envelope = smoothstep(t_s, config_.ramp_s);

@@ -8,11 +8,19 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "teleop/common/joint_model.h"
 #include "joint_trajectory.h"
 
 namespace teleop::leader {
+
+/// The simulated operator pressing one of the device's buttons for a while.
+struct ButtonPress {
+  uint32_t button = 0;
+  double at_s = 0.0;
+  double hold_s = 0.2;
+};
 
 struct OperatorMotionConfig {
   enum class Kind { kSine, kPushHold, kRecorded } kind = Kind::kSine;
@@ -25,6 +33,8 @@ struct OperatorMotionConfig {
   /// kRecorded: the motion, loaded at setup, and the prefix of its position columns.
   std::shared_ptr<const JointTrajectory> recording;
   std::string recording_columns = "q_dev_";
+  /// leader.button_presses: the buttons the operator presses, and when.
+  std::vector<ButtonPress> presses;
 };
 
 class OperatorMotion {
@@ -36,6 +46,8 @@ class OperatorMotion {
   /// The torque the operator adds on purpose at `t_s` (a recording's tau_op_ columns, e.g. a
   /// squeeze: a person grasps by pressing, not by aiming deeper); zero for the other kinds.
   void intended_torque(double t_s, JointVector& tau_nm) const;
+  /// The buttons the operator holds pressed at `t_s` (bit k: button k).
+  uint32_t pressed_buttons(double t_s) const;
 
  private:
   void sine(double t_s, JointVector& q_rad, JointVector& dq_radps) const;

@@ -38,6 +38,10 @@ void ArmGroup::cycle(const CycleTick& tick) {
   if (after_arms_) after_arms_();
 }
 
+void ArmGroup::emergency_stop(bool engaged) {
+  for (Arm& a : arms_) a.logic->emergency_stop(engaged);
+}
+
 msg::NodeState ArmGroup::state() const {
   msg::NodeState worst = arms_.front().logic->state();
   for (const Arm& a : arms_) {

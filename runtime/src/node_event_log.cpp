@@ -103,6 +103,10 @@ std::string format_event(const NodeEvent& e, const std::string& node) {
     case NodeEvent::Kind::kStall:
       return fmt::format("{}: the loop stalled for {:.3f} s ({} deadlines skipped)", node, e.value, e.count);
     case NodeEvent::Kind::kAuthority: return authority_line(e, node);
+    case NodeEvent::Kind::kEmergencyStop:
+      return node + (e.code != 0 ? ": EMERGENCY STOP from '" : ": enabled after the emergency stop by '") +
+             std::string(e.who.view()) + "' (" + std::string(e.topic.view()) + ")" +
+             (e.code != 0 ? "; only `teleop enable` resumes" : "");
   }
   return node + ": unknown event";
 }
@@ -120,6 +124,7 @@ spdlog::level::level_enum level_of(const NodeEvent& e) {
       return static_cast<CommandRefusal>(e.code) == CommandRefusal::kNone ? spdlog::level::info : spdlog::level::warn;
     case NodeEvent::Kind::kRefused:
     case NodeEvent::Kind::kStall: return spdlog::level::warn;
+    case NodeEvent::Kind::kEmergencyStop: return e.code != 0 ? spdlog::level::err : spdlog::level::warn;
   }
   return spdlog::level::info;
 }

@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 
+#include "emergency_stop_gate.h"
 #include "flow_watch.h"
 #include "node_event_log.h"
 #include "status_publisher.h"
@@ -243,7 +244,9 @@ void run_on_network(const CommandLine& cli, const NodeDescription& description, 
     return;
   }
   NodeContext context{node, participant};
-  std::unique_ptr<NodeLogic> logic = setup.build(context);
+  // every node honours the stop chain: its logic behind the gate that latches emergency stops
+  std::unique_ptr<NodeLogic> logic =
+      std::make_unique<EmergencyStopGate>(setup.build(context), participant, node.name);
   out.trace = make_trace_recorder(cli, node, *logic);
   if (out.trace && cli.trace_stream) out.stream = std::make_unique<TraceStream>(*out.trace, cli.trace_path);
   StatusPublisher status(participant, node.name, description.role, node.rate_hz, node.status_rate_hz);

@@ -140,6 +140,30 @@ TEST_F(FollowerNodeTest, HoldsItsPoseWhenCommandsStopAndResumesWhenTheyReturn) {
   EXPECT_EQ(node->state(), msg::STATE_RUNNING);
 }
 
+// an emergency stop while the arm moves: it comes to rest where its damping stops it (no spring
+// pulls it back), follows no command while stopped, however they stream, and joins them after the
+// enable without a step
+TEST_F(FollowerNodeTest, AnEmergencyStopBringsTheArmToRestAndOnlyAnEnableResumes) {
+  for (int i = 0; i < 400; ++i) step(0.3 * i / 400.0);
+  ASSERT_EQ(node->state(), msg::STATE_RUNNING);
+  node->emergency_stop(true);
+  EXPECT_NE(node->state(), msg::STATE_RUNNING);
+  EXPECT_TRUE(has_fault(msg::FAULT_EMERGENCY_STOP));
+  for (int i = 0; i < 600; ++i) step(0.3);
+  const robot::ArmState rest = node->arm();
+  for (int i = 0; i < 400; ++i) step(0.3 - 0.3 * i / 400.0);
+  EXPECT_NE(node->state(), msg::STATE_RUNNING);
+  for (size_t j = 0; j < kJoints; ++j) {
+    EXPECT_NEAR(node->arm().q_rad[j], rest.q_rad[j], 2e-3) << "joint " << j << ": stays where it came to rest";
+  }
+  EXPECT_GT(std::abs(node->arm().q_rad[0] - kHome[0]), 0.1) << "the commands went home, the arm did not follow";
+  node->emergency_stop(false);
+  for (int i = 0; i < 1500; ++i) step(0.0);
+  EXPECT_EQ(node->state(), msg::STATE_RUNNING);
+  EXPECT_EQ(counter("reflex_trips"), 0.0) << "joined, not stepped to";
+  for (size_t j = 0; j < kJoints; ++j) EXPECT_NEAR(node->arm().q_rad[j], kHome[j], 0.01) << "joint " << j;
+}
+
 // the loop stopped for longer than the command timeout (a stopped or starved process): the
 // backlog's newest command is far from where the arm is, and is joined, not stepped to
 TEST_F(FollowerNodeTest, AStallOfItsOwnLoopIsAHoldAndTheNewestCommandIsJoinedNotSteppedTo) {

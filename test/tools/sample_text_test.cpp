@@ -92,7 +92,7 @@ TEST(SampleHeader, IsReadAndRestampedInPlaceForEveryType) {
 }
 
 TEST(SampleTypes, KnowsEveryTypeByItsDdsAndItsRosName) {
-  EXPECT_EQ(transport::sample_types().size(), 12u);
+  EXPECT_EQ(transport::sample_types().size(), 13u);
   const transport::SampleType* t = transport::find_sample_type("teleop/msg/JointCommand");
   ASSERT_NE(t, nullptr);
   EXPECT_EQ(t->dds_name, "teleop::msg::JointCommand");

@@ -79,6 +79,7 @@ int main(int argc, char** argv) {
   add_samples(writer, msg::TdpaEnergy());
   add_samples(writer, msg::GeomDistances());
   add_samples(writer, msg::ObjectPose());
+  add_samples(writer, msg::EmergencyStop());
   writer.close();
   std::printf("wrote %s\n", argv[1]);
   return 0;

@@ -17,6 +17,7 @@
 #include "teleop/transport/sample_types.h"
 #include "teleop/transport/type_support.h"
 #include "teleop_msgs/CartesianCommand_PubSubTypes.h"
+#include "teleop_msgs/EmergencyStop_PubSubTypes.h"
 #include "teleop_msgs/GeomDistances_PubSubTypes.h"
 #include "teleop_msgs/HandCommand_PubSubTypes.h"
 #include "teleop_msgs/HandState_PubSubTypes.h"
@@ -239,6 +240,20 @@ TEST(Ros2Wire, NodeStatusEnumsAndNestedSequences) {
         EXPECT_EQ(r.flows_()[1].topic_().to_string(), "teleop/follower/joint_state");
         EXPECT_EQ(r.flows_()[1].writers_(), -1);
         EXPECT_EQ(r.can_bus_state_().to_string(), "error_active");
+      });
+}
+
+TEST(Ros2Wire, EmergencyStop) {
+  msg::EmergencyStop q;
+  fill(q.header());
+  q.engaged(true);
+  q.target("follower");
+  q.origin("button 0 of the leader's device");
+  expect_wire_identical<msg::EmergencyStop, ros::EmergencyStop_PubSubType, ros::EmergencyStop_>(
+      q, [](const ros::EmergencyStop_& r) {
+        EXPECT_TRUE(r.engaged_());
+        EXPECT_EQ(r.target_().to_string(), "follower");
+        EXPECT_EQ(r.origin_().to_string(), "button 0 of the leader's device");
       });
 }
 

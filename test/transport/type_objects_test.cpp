@@ -63,6 +63,7 @@ TEST(TypeObjects, ConstructingASampleDoesNotAllocate) {
   EXPECT_EQ(allocations_of_a_construction<msg::TdpaEnergy>(), 0u);
   EXPECT_EQ(allocations_of_a_construction<msg::GeomDistances>(), 0u);
   EXPECT_EQ(allocations_of_a_construction<msg::ObjectPose>(), 0u);
+  EXPECT_EQ(allocations_of_a_construction<msg::EmergencyStop>(), 0u);
 }
 
 TEST(TypeObjects, DescribeTheBytesOnTheWire) {

@@ -203,6 +203,13 @@ void walk(const msg::ResetRequest& s, W& w) {
   w.value("target", text(s.target()));
 }
 
+void walk(const msg::EmergencyStop& s, W& w) {
+  walk(s.header(), w);
+  w.value("engaged", s.engaged());
+  w.value("target", text(s.target()));
+  w.value("origin", std::string_view(s.origin().c_str()));
+}
+
 void walk(const msg::TdpaEnergy& s, W& w) {
   walk(s.header(), w);
   w.value("session", static_cast<uint64_t>(s.session()));
@@ -228,7 +235,7 @@ struct TypeList {};
 
 using AllTypes = TypeList<msg::JointState, msg::JointCommand, msg::CartesianCommand, msg::WrenchStamped,
                           msg::JointTorque, msg::HandCommand, msg::HandState, msg::NodeStatus, msg::ResetRequest,
-                          msg::TdpaEnergy, msg::GeomDistances, msg::ObjectPose>;
+                          msg::TdpaEnergy, msg::GeomDistances, msg::ObjectPose, msg::EmergencyStop>;
 
 // the sample's fields, deserialized as the type it is, to `visitor`
 template <typename T, typename... Rest>

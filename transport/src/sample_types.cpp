@@ -45,6 +45,7 @@ const std::vector<SampleType>& sample_types() {
       describe<msg::WrenchStamped>(), describe<msg::JointTorque>(),   describe<msg::HandCommand>(),
       describe<msg::HandState>(),     describe<msg::NodeStatus>(),    describe<msg::ResetRequest>(),
       describe<msg::TdpaEnergy>(),    describe<msg::GeomDistances>(), describe<msg::ObjectPose>(),
+      describe<msg::EmergencyStop>(),
   };
   return types;
 }
@@ -69,7 +70,7 @@ const std::vector<KnownTopic>& known_topics() {
       known(kFollowerWrench),       known(kTwinFeedback),    known(kTwinState),     known(kTwinCommand),
       known(kHandCommand),          known(kHandState),       known(kHandJoints),    known(kTdpaLeaderToFollower),
       known(kTdpaFollowerToLeader), known(kTwinDistances),   known(kLockstepState), known(kLockstepCommand),
-      known(kResetRequest),         known(kNodeStatus),
+      known(kResetRequest),         known(kNodeStatus),      known(kEmergencyStop),
   };
   return list;
 }
@@ -78,6 +79,7 @@ QosPreset topic_qos(std::string_view topic) {
   using namespace topics;
   if (named(topic, kNodeStatus)) return kNodeStatus.qos;
   if (named(topic, kResetRequest)) return kResetRequest.qos;
+  if (named(topic, kEmergencyStop)) return kEmergencyStop.qos;
   if (named(topic, kLockstepState)) return kLockstepState.qos;
   if (named(topic, kLockstepCommand)) return kLockstepCommand.qos;
   return QosPreset::kStream;

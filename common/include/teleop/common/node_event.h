@@ -18,6 +18,7 @@ struct NodeEvent {
     kRefused,    ///< a flow refused a writer's sample for the first time for this cause (`code`, `detail`)
     kStall,      ///< the loop stalled: `count` deadlines skipped over `value` seconds
     kAuthority,  ///< whether the node's commands are in force changed: why not (`code`), at `who`, `detail`
+    kEmergencyStop,  ///< an emergency stop engaged (`code` 1) or was ended by an enable (0), sent by `who` from `topic`
   };
   Kind kind = Kind::kState;
   int64_t mono_ns = 0;

@@ -38,6 +38,10 @@ class FollowerNode final : public runtime::NodeLogic {
 
   void cycle(const CycleTick& tick) override;
   msg::NodeState state() const override { return state_; }
+  /// Engaged: brings the robot to rest by the safe hold's damping alone (no spring pulls it back
+  /// to where the stop came) and holds it where it came to rest, following no command, until
+  /// disengaged (an enable); then commands are joined from the held pose.
+  void emergency_stop(bool engaged) override;
   void active_faults(std::vector<uint32_t>& faults) const override;
   void fill_status(msg::NodeStatus& status) const override;
   void fill_report(runtime::NodeReport& report) const override;
@@ -68,6 +72,9 @@ class FollowerNode final : public runtime::NodeLogic {
   /// robot refused it.
   bool command_robot();
   void run_reflex();
+  /// An emergency stop's first phase: the hold follows the robot until no joint moves faster than
+  /// kAtRestRadps, so that only its damping acts; then it stays where the robot came to rest.
+  void bring_to_rest();
   bool source_lost(double silence_s) const;
   /// Makes `hold` a joint impedance at the current pose with these gains.
   void hold_current_pose(ValidCommand& hold, double stiffness, double damping);
@@ -95,6 +102,8 @@ class FollowerNode final : public runtime::NodeLogic {
   std::unique_ptr<FollowerArchitecture> architecture_;
   const ValidCommand* controlled_ = &active_;
   SafetyReflex reflex_;
+  bool emergency_stopped_ = false;
+  bool coming_to_rest_ = false;
   SpeedBrake brake_;
   ValidCommand reflex_hold_{};
   JointRejoin rejoin_;

@@ -35,6 +35,8 @@ class HandNode final : public runtime::NodeLogic {
 
   void cycle(const CycleTick& tick) override;
   msg::NodeState state() const override;
+  /// Engaged: the drives quick-stop and hold (the hand's disable), commands wait for the enable.
+  void emergency_stop(bool engaged) override;
   void active_faults(std::vector<uint32_t>& faults) const override;
   void fill_status(msg::NodeStatus& status) const override;
   void fill_report(runtime::NodeReport& report) const override;
@@ -54,6 +56,7 @@ class HandNode final : public runtime::NodeLogic {
   transport::Publication<msg::JointState> joints_pub_;
   HandTargets targets_;
   bool command_stale_ = true;
+  bool emergency_stopped_ = false;
 };
 
 }  // namespace teleop::hand

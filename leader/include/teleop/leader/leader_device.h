@@ -5,6 +5,8 @@
 // (device_registry.h). Implementations: the script itself, a simulated haptic arm pulled by a
 // simulated operator, the replay of a recording (simulated_devices.h); a real device plugs in here.
 
+#include <cstdint>
+
 #include "teleop/common/joint_model.h"
 
 namespace teleop::leader {
@@ -14,6 +16,8 @@ struct DeviceState {
   JointVector dq_radps{};
   /// The torque the operator applies to the device, where known (simulation), else 0.
   JointVector tau_operator_nm{};
+  /// Bit k set: the device's button k is pressed (leader.buttons says what a button does).
+  uint32_t buttons = 0;
 };
 
 /// What the simulated operator (leader.motion) wants this period: where the device should be, in

@@ -30,6 +30,8 @@ class ArmGroup final : public NodeLogic {
   /// The worst state of any arm: fault, then safe hold, starting, stopping, running.
   msg::NodeState state() const override;
   void active_faults(std::vector<uint32_t>& faults) const override;
+  /// Every arm stops (and is enabled) together.
+  void emergency_stop(bool engaged) override;
   /// Every arm's topics; its counters as "<arm>.<counter>" (unnamed members: as they are).
   void fill_report(NodeReport& report) const override;
   /// Every arm's columns as "<arm>_<column>" (unnamed members: as they are).

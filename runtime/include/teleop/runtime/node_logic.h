@@ -26,6 +26,12 @@ class NodeLogic {
   /// Adds what only this node knows to its NodeStatus (TDPA energy, the CAN bus state); the
   /// runner has filled the rest. Real-time safe: no allocation.
   virtual void fill_status(msg::NodeStatus& status) const { (void)status; }
+  /// An emergency stop engaged (true), or ended by a deliberate enable (false): told before the
+  /// work of the first cycle after it arrived (docs/stop_chain.md). A node that moves something
+  /// stops it and keeps it stopped until told false (the follower holds its robot and follows no
+  /// command, the leader freezes its command and renders no force); meanwhile the runner reports the
+  /// node in STATE_FAULT with FAULT_EMERGENCY_STOP. Real-time safe.
+  virtual void emergency_stop(bool engaged) { (void)engaged; }
   /// Adds the node's topics and counters to the final report. Called once after the loop.
   virtual void fill_report(NodeReport& report) const = 0;
 

@@ -54,6 +54,9 @@ inline constexpr TopicSpec<msg::JointState> kLockstepState{"teleop/lockstep/stat
 inline constexpr TopicSpec<msg::JointCommand> kLockstepCommand{"teleop/lockstep/command", QosPreset::kEvent};
 // an operator's reset of a node's latched faults, one topic for all nodes (the target says whom)
 inline constexpr TopicSpec<msg::ResetRequest> kResetRequest{"teleop/reset", QosPreset::kEvent};
+// the stop chain: emergency stops and the enables that end them, one topic for all nodes (the
+// target says whom; empty: everyone)
+inline constexpr TopicSpec<msg::EmergencyStop> kEmergencyStop{"teleop/emergency_stop", QosPreset::kEvent};
 // node health, one topic for all nodes (the header's source says who)
 inline constexpr TopicSpec<msg::NodeStatus> kNodeStatus{"teleop/node_status", QosPreset::kState};
 

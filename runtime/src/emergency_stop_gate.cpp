@@ -1,0 +1,81 @@
+#include "emergency_stop_gate.h"
+
+#include <algorithm>
+
+#include "teleop/common/clock.h"
+#include "teleop/transport/topics.h"
+
+namespace teleop::runtime {
+
+EmergencyStopGate::EmergencyStopGate(std::unique_ptr<NodeLogic> logic, transport::Participant& participant,
+                                     std::string node_name)
+    : logic_(std::move(logic)),
+      name_(std::move(node_name)),
+      requests_(participant.make_reader(transport::topics::kEmergencyStop)),
+      events_(&participant.events()) {}
+
+bool EmergencyStopGate::addressed_to_us(const msg::EmergencyStop& request) const {
+  const std::string_view target = request.target().c_str();
+  return target.empty() || target == name_;
+}
+
+void EmergencyStopGate::log_change(const msg::EmergencyStop& request, int64_t now_ns) {
+  NodeEvent e;
+  e.kind = NodeEvent::Kind::kEmergencyStop;
+  e.mono_ns = now_ns;
+  e.code = engaged_ ? 1 : 0;
+  e.who.assign(request.header().source().c_str());
+  e.topic.assign(request.origin().c_str());
+  events_->push(e);
+}
+
+void EmergencyStopGate::cycle(const CycleTick& tick) {
+  int64_t reception_ns = 0;
+  WriterId writer;
+  while (requests_.take_next(request_, reception_ns, writer)) {
+    if (!addressed_to_us(request_)) continue;
+    // the first cycle after the arrival acts on it: its start is the reaction's end
+    reaction_max_ns_ = std::max(reaction_max_ns_, system_now_ns() - reception_ns);
+    if (request_.engaged() == engaged_) continue;  // a repeat changes nothing
+    emergency_stop(request_.engaged());
+    log_change(request_, tick.now_ns);
+  }
+  logic_->cycle(tick);
+}
+
+void EmergencyStopGate::emergency_stop(bool engaged) {
+  engaged_ = engaged;
+  ++(engaged ? stops_ : enables_);
+  logic_->emergency_stop(engaged);
+}
+
+void EmergencyStopGate::active_faults(std::vector<uint32_t>& faults) const {
+  logic_->active_faults(faults);
+  // the follower names the cause of its hold itself
+  if (engaged_ && std::find(faults.begin(), faults.end(), msg::FAULT_EMERGENCY_STOP) == faults.end()) {
+    faults.push_back(msg::FAULT_EMERGENCY_STOP);
+  }
+}
+
+void EmergencyStopGate::fill_report(NodeReport& report) const {
+  logic_->fill_report(report);
+  report.counters.emplace_back("emergency_stops", static_cast<double>(stops_));
+  report.counters.emplace_back("emergency_stop_enables", static_cast<double>(enables_));
+  report.counters.emplace_back("emergency_stop_engaged", engaged_ ? 1.0 : 0.0);
+  report.counters.emplace_back("emergency_stop_reaction_max_ms", static_cast<double>(reaction_max_ns_) * 1e-6);
+}
+
+void EmergencyStopGate::trace_columns(std::vector<std::string>& columns) const {
+  const size_t before = columns.size();
+  logic_->trace_columns(columns);
+  logic_columns_ = columns.size() - before;
+  // a node without a trace of its own keeps writing none
+  if (logic_columns_ > 0) columns.emplace_back("emergency_stop");
+}
+
+void EmergencyStopGate::trace_row(double* row) const {
+  logic_->trace_row(row);
+  row[logic_columns_] = engaged_ ? 1.0 : 0.0;
+}
+
+}  // namespace teleop::runtime

@@ -1,0 +1,57 @@
+#pragma once
+// The stop chain's end in every node (docs/stop_chain.md): the runner wraps the node's logic in
+// this gate, which takes the emergency stops and enables addressed to the node (teleop/emergency_stop)
+// at the start of each cycle, tells the logic before that cycle's work, and keeps the stop latched:
+// only an enable ends it; a new command session, a returning link or a restarted peer do not.
+// While it is engaged the node reports STATE_FAULT with FAULT_EMERGENCY_STOP, whatever its logic
+// says, so that no node reads as running while stopped.
+
+#include <teleop/msg/status.h>
+
+#include <memory>
+#include <string>
+
+#include "teleop/common/node_event.h"
+#include "teleop/runtime/node_logic.h"
+#include "teleop/transport/participant.h"
+#include "teleop/transport/reader.h"
+
+namespace teleop::runtime {
+
+class EmergencyStopGate final : public NodeLogic {
+ public:
+  EmergencyStopGate(std::unique_ptr<NodeLogic> logic, transport::Participant& participant, std::string node_name);
+
+  /// Takes what arrived, tells the logic of a change, then runs its cycle. Real-time safe.
+  void cycle(const CycleTick& tick) override;
+  msg::NodeState state() const override { return engaged_ ? msg::STATE_FAULT : logic_->state(); }
+  void active_faults(std::vector<uint32_t>& faults) const override;
+  void emergency_stop(bool engaged) override;
+  void fill_status(msg::NodeStatus& status) const override { logic_->fill_status(status); }
+  void fill_report(NodeReport& report) const override;
+  int64_t pacing_phase_ns() const override { return logic_->pacing_phase_ns(); }
+  /// The logic's columns and `emergency_stop` (1 while engaged) after them.
+  void trace_columns(std::vector<std::string>& columns) const override;
+  void trace_row(double* row) const override;
+
+  bool engaged() const { return engaged_; }
+  const NodeLogic& logic() const { return *logic_; }
+
+ private:
+  bool addressed_to_us(const msg::EmergencyStop& request) const;
+  void log_change(const msg::EmergencyStop& request, int64_t now_ns);
+
+  std::unique_ptr<NodeLogic> logic_;
+  std::string name_;
+  transport::Reader<msg::EmergencyStop> requests_;
+  msg::EmergencyStop request_;
+  NodeEventQueue* events_;
+  bool engaged_ = false;
+  uint64_t stops_ = 0;
+  uint64_t enables_ = 0;
+  // from a request's arrival at the reader to the start of the cycle that acted on it [ns]
+  int64_t reaction_max_ns_ = 0;
+  mutable size_t logic_columns_ = 0;  // set once by trace_columns()
+};
+
+}  // namespace teleop::runtime
