@@ -2,6 +2,8 @@
 
 #include <time.h>
 
+#include <cstdlib>
+
 namespace teleop {
 namespace {
 
@@ -15,7 +17,15 @@ int64_t read_clock_ns(clockid_t id) {
 
 int64_t monotonic_now_ns() { return read_clock_ns(CLOCK_MONOTONIC); }
 
-int64_t system_now_ns() { return read_clock_ns(CLOCK_REALTIME); }
+int64_t realtime_offset_ns() {
+  static const int64_t offset_ns = [] {
+    const char* text = std::getenv("TELEOP_CLOCK_OFFSET_MS");
+    return text == nullptr ? int64_t{0} : static_cast<int64_t>(std::strtod(text, nullptr) * 1e6);
+  }();
+  return offset_ns;
+}
+
+int64_t system_now_ns() { return read_clock_ns(CLOCK_REALTIME) + realtime_offset_ns(); }
 
 int64_t MonotonicClock::now_ns() { return monotonic_now_ns(); }
 

@@ -4,6 +4,10 @@
 
 namespace teleop {
 
-std::string version_text() { return std::string("teleop ") + TELEOP_VERSION + " (git " + TELEOP_GIT_DESCRIBE + ")"; }
+std::string software_version() { return std::string(TELEOP_VERSION) + " (git " + TELEOP_GIT_DESCRIBE + ")"; }
+
+std::string version_text() { return "teleop " + software_version(); }
+
+const char* message_version() { return TELEOP_MESSAGE_VERSION; }
 
 }  // namespace teleop

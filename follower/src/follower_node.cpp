@@ -115,7 +115,9 @@ void FollowerNode::take(transport::Subscription<Command>& commands, Source sourc
                         int64_t now_system_ns, int64_t now_ns) {
   if (commands.poll() == 0) return;
   const uint64_t session = commands.session().session();
-  if (validator_.validate(commands.latest(), now_system_ns, active_, session) == CommandVerdict::kRejected) {
+  // a command's age beyond its writer's fastest sample: no assumption that the two hosts' clocks agree
+  const int64_t now_on_writers_clock_ns = now_system_ns - commands.clock_offset_ns();
+  if (validator_.validate(commands.latest(), now_on_writers_clock_ns, active_, session) == CommandVerdict::kRejected) {
     // the sender learns it from the status (FlowStatus.in_force), the log from the first of each kind
     const CommandIssue why = validator_.last_rejection();
     commands.reject_latest(static_cast<uint32_t>(why), to_string(why));

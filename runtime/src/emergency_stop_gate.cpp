@@ -12,7 +12,8 @@ EmergencyStopGate::EmergencyStopGate(std::unique_ptr<NodeLogic> logic, transport
     : logic_(std::move(logic)),
       name_(std::move(node_name)),
       requests_(participant.make_reader(transport::topics::kEmergencyStop)),
-      events_(&participant.events()) {}
+      events_(&participant.events()),
+      versions_(participant, name_) {}
 
 bool EmergencyStopGate::addressed_to_us(const msg::EmergencyStop& request) const {
   const std::string_view target = request.target().c_str();
@@ -30,6 +31,7 @@ void EmergencyStopGate::log_change(const msg::EmergencyStop& request, int64_t no
 }
 
 void EmergencyStopGate::cycle(const CycleTick& tick) {
+  watch_versions(tick.now_ns);
   int64_t reception_ns = 0;
   WriterId writer;
   while (requests_.take_next(request_, reception_ns, writer)) {
@@ -37,10 +39,37 @@ void EmergencyStopGate::cycle(const CycleTick& tick) {
     // the first cycle after the arrival acts on it: its start is the reaction's end
     reaction_max_ns_ = std::max(reaction_max_ns_, system_now_ns() - reception_ns);
     if (request_.engaged() == engaged_) continue;  // a repeat changes nothing
+    // nothing resumes a node while a peer of another version talks on the domain
+    if (!request_.engaged() && mismatched_) {
+      ++enables_refused_;
+      continue;
+    }
     emergency_stop(request_.engaged());
     log_change(request_, tick.now_ns);
   }
   logic_->cycle(tick);
+}
+
+void EmergencyStopGate::watch_versions(int64_t now_ns) {
+  const bool mismatched = versions_.mismatched(now_ns);
+  if (mismatched == mismatched_) return;
+  mismatched_ = mismatched;
+  NodeEvent e;
+  e.kind = NodeEvent::Kind::kVersionMismatch;
+  e.mono_ns = now_ns;
+  e.code = mismatched ? 1 : 0;
+  VersionMismatch words;
+  if (versions_.last_mismatch(words)) {
+    e.who = words.peer;
+    e.count = words.peer_protocol;
+    e.topic.assign(words.peer_messages.view());
+    e.detail = words.peer_software;
+  }
+  events_->push(e);
+  if (!mismatched || engaged_) return;
+  ++version_stops_;
+  engaged_ = true;
+  logic_->emergency_stop(true);
 }
 
 void EmergencyStopGate::emergency_stop(bool engaged) {
@@ -55,6 +84,7 @@ void EmergencyStopGate::active_faults(std::vector<uint32_t>& faults) const {
   if (engaged_ && std::find(faults.begin(), faults.end(), msg::FAULT_EMERGENCY_STOP) == faults.end()) {
     faults.push_back(msg::FAULT_EMERGENCY_STOP);
   }
+  if (mismatched_) faults.push_back(msg::FAULT_VERSION_MISMATCH);
 }
 
 void EmergencyStopGate::fill_report(NodeReport& report) const {
@@ -63,6 +93,8 @@ void EmergencyStopGate::fill_report(NodeReport& report) const {
   report.counters.emplace_back("emergency_stop_enables", static_cast<double>(enables_));
   report.counters.emplace_back("emergency_stop_engaged", engaged_ ? 1.0 : 0.0);
   report.counters.emplace_back("emergency_stop_reaction_max_ms", static_cast<double>(reaction_max_ns_) * 1e-6);
+  report.counters.emplace_back("version_mismatch_stops", static_cast<double>(version_stops_));
+  report.counters.emplace_back("enables_refused", static_cast<double>(enables_refused_));
 }
 
 void EmergencyStopGate::trace_columns(std::vector<std::string>& columns) const {

@@ -4,13 +4,16 @@
 // at the start of each cycle, tells the logic before that cycle's work, and keeps the stop latched:
 // only an enable ends it; a new command session, a returning link or a restarted peer do not.
 // While it is engaged the node reports STATE_FAULT with FAULT_EMERGENCY_STOP, whatever its logic
-// says, so that no node reads as running while stopped.
+// says, so that no node reads as running while stopped. A peer of another protocol or message
+// version on the domain stops the node the same way (FAULT_VERSION_MISMATCH while it talks,
+// peer_versions.h); no enable is taken until it is gone.
 
 #include <teleop/msg/status.h>
 
 #include <memory>
 #include <string>
 
+#include "peer_versions.h"
 #include "teleop/common/node_event.h"
 #include "teleop/runtime/node_logic.h"
 #include "teleop/transport/participant.h"
@@ -40,13 +43,19 @@ class EmergencyStopGate final : public NodeLogic {
  private:
   bool addressed_to_us(const msg::EmergencyStop& request) const;
   void log_change(const msg::EmergencyStop& request, int64_t now_ns);
+  /// Stops the node when a peer of another version appears, logs it when it goes.
+  void watch_versions(int64_t now_ns);
 
   std::unique_ptr<NodeLogic> logic_;
   std::string name_;
   transport::Reader<msg::EmergencyStop> requests_;
   msg::EmergencyStop request_;
   NodeEventQueue* events_;
+  PeerVersions versions_;
   bool engaged_ = false;
+  bool mismatched_ = false;
+  uint64_t version_stops_ = 0;
+  uint64_t enables_refused_ = 0;
   uint64_t stops_ = 0;
   uint64_t enables_ = 0;
   // from a request's arrival at the reader to the start of the cycle that acted on it [ns]

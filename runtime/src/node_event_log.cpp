@@ -3,8 +3,10 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cmath>
 #include <mutex>
 
+#include "teleop/common/version.h"
 #include "teleop/runtime/command_authority.h"
 #include "teleop/runtime/realtime.h"
 #include "teleop/runtime/status_names.h"
@@ -91,6 +93,15 @@ std::string authority_line(const NodeEvent& e, const std::string& node) {
   return line;
 }
 
+std::string version_line(const NodeEvent& e, const std::string& node) {
+  if (e.code == 0) return node + ": the node of another version is gone; `teleop enable` resumes";
+  return fmt::format(
+      "{}: STOPPED, VERSION MISMATCH: '{}' speaks protocol {}, messages {} (teleop {}); this node protocol {}, "
+      "messages {} (teleop {}): their samples would decode as garbage. Run one release on every host",
+      node, e.who.view(), e.count, e.topic.view(), e.detail.view(), kProtocolVersion, message_version(),
+      software_version());
+}
+
 }  // namespace
 
 std::string format_event(const NodeEvent& e, const std::string& node) {
@@ -103,6 +114,13 @@ std::string format_event(const NodeEvent& e, const std::string& node) {
     case NodeEvent::Kind::kStall:
       return fmt::format("{}: the loop stalled for {:.3f} s ({} deadlines skipped)", node, e.value, e.count);
     case NodeEvent::Kind::kAuthority: return authority_line(e, node);
+    case NodeEvent::Kind::kVersionMismatch: return version_line(e, node);
+    case NodeEvent::Kind::kClockOffset:
+      return fmt::format(
+          "{}: the clock of '{}' reads {:.1f} ms {} ours (its fastest samples on {} arrive {:.1f} ms after their "
+          "stamps): command ages are judged beyond its fastest sample; synchronise the hosts' clocks for "
+          "latencies that mean something (docs/clocks.md)",
+          node, e.who.view(), std::abs(e.value) * 1e3, e.value < 0 ? "ahead of" : "behind", e.topic.view(), e.value * 1e3);
     case NodeEvent::Kind::kEmergencyStop:
       return node + (e.code != 0 ? ": EMERGENCY STOP from '" : ": enabled after the emergency stop by '") +
              std::string(e.who.view()) + "' (" + std::string(e.topic.view()) + ")" +
@@ -125,6 +143,8 @@ spdlog::level::level_enum level_of(const NodeEvent& e) {
     case NodeEvent::Kind::kRefused:
     case NodeEvent::Kind::kStall: return spdlog::level::warn;
     case NodeEvent::Kind::kEmergencyStop: return e.code != 0 ? spdlog::level::err : spdlog::level::warn;
+    case NodeEvent::Kind::kClockOffset: return spdlog::level::warn;
+    case NodeEvent::Kind::kVersionMismatch: return e.code != 0 ? spdlog::level::err : spdlog::level::warn;
   }
   return spdlog::level::info;
 }

@@ -173,6 +173,8 @@ const std::initializer_list<Field<ReceivedTopic>> kReceivedFields{
     {"refused_sequence_jump", &ReceivedTopic::refused_sequence_jump, true},
     {"refused_not_accepted", &ReceivedTopic::refused_not_accepted, true},
     {"refused_invalid", &ReceivedTopic::refused_invalid, true},
+    {"clock_offset_ns", &ReceivedTopic::clock_offset_ns, true},
+    {"clock_offset_max_ns", &ReceivedTopic::clock_offset_max_ns, true},
 };
 
 const std::initializer_list<Field<ImpairedLink>> kLinkFields{

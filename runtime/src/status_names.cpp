@@ -32,6 +32,7 @@ const char* fault_name(uint32_t fault_code) {
     case msg::FAULT_SPEED_REFLEX: return "speed_reflex";
     case msg::FAULT_NOT_IN_COMMAND: return "not_in_command";
     case msg::FAULT_EMERGENCY_STOP: return "emergency_stop";
+    case msg::FAULT_VERSION_MISMATCH: return "version_mismatch";
   }
   return "unknown_fault";
 }

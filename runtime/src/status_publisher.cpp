@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "teleop/common/clock.h"
+#include "teleop/common/version.h"
 
 namespace teleop::runtime {
 
@@ -14,6 +15,9 @@ StatusPublisher::StatusPublisher(transport::Participant& participant, const std:
       publication_(participant, transport::topics::kNodeStatus, node_name),
       cycles_per_status_(std::max<uint64_t>(1, static_cast<uint64_t>(std::llround(loop_rate_hz / status_rate_hz)))) {
   publication_.sample().role(role);
+  publication_.sample().protocol_version(kProtocolVersion);
+  publication_.sample().message_version(message_version());
+  publication_.sample().software_version(software_version().substr(0, 31));
   publication_.sample().loop().rate_hz(loop_rate_hz);
   faults_.reserve(msg::MAX_FAULTS);
   publication_.sample().fault_codes().reserve(msg::MAX_FAULTS);
@@ -56,6 +60,7 @@ void StatusPublisher::fill_flows() {
     f.received(status.received.load(std::memory_order_relaxed));
     f.lost(status.lost.load(std::memory_order_relaxed));
     f.latency_ns(status.latency_ns.load(std::memory_order_relaxed));
+    f.clock_offset_ns(status.clock_offset_ns.load(std::memory_order_relaxed));
     const int64_t last = status.last_data_mono_ns.load(std::memory_order_relaxed);
     f.age_ns(last == 0 ? -1 : now_ns - last);
     fill_authority(status.authority, f);

@@ -139,7 +139,7 @@ TEST(ExperimentProcess, AnalysesTracesOfTwoProcessesAndKeepsFailedAndBrokenRunsA
   // the traces themselves: the documented header; the time columns, the state by its name
   const std::string trace = read_file(dir + "/out/good/none/leader.csv");
   EXPECT_EQ(lines_of(trace).at(0),
-            "t_s,wall_s,lateness_us,x_cmd_x,x_cmd_y,x_cmd_z,f_felt_x,f_felt_y,f_felt_z,tdpa_w_j,state");
+            "t_s,wall_s,lateness_us,x_cmd_x,x_cmd_y,x_cmd_z,f_felt_x,f_felt_y,f_felt_z,tdpa_w_j,state,emergency_stop");
   ASSERT_GT(lines_of(trace).size(), 1000u);
   const auto row = cells_of(lines_of(trace).at(1000));
   const double wall_s = std::stod(row.at(1));
@@ -147,7 +147,8 @@ TEST(ExperimentProcess, AnalysesTracesOfTwoProcessesAndKeepsFailedAndBrokenRunsA
   EXPECT_GT(wall_s, now_s - 600) << "CLOCK_REALTIME of this run";
   EXPECT_LE(wall_s, now_s);
   EXPECT_GE(std::stod(row.at(2)), 0.0) << "lateness";
-  EXPECT_EQ(row.back(), "running");
+  EXPECT_EQ(row.at(row.size() - 2), "running");
+  EXPECT_EQ(row.back(), "0") << "no emergency stop";
 }
 
 }  // namespace

@@ -56,10 +56,19 @@ struct FlowNumbers {
   std::string authority;  // whom it follows, what it refused
 };
 
+// ", its clock 2000.1 ms ahead" where the followed writer's samples say its clock (or the fastest
+// path from it) is more than 10 ms away from the node's (common/clock_offset.h); "" otherwise
+std::string clock_text(const msg::FlowStatus& f) {
+  const double offset_ms = static_cast<double>(f.clock_offset_ns()) * 1e-6;
+  if (std::abs(offset_ms) <= 10.0) return "";
+  return fmt::format(", its clock {:.1f} ms {}", std::abs(offset_ms), offset_ms < 0 ? "ahead" : "behind or slow");
+}
+
 // "following leader, refused 1234 (rogue: other_writer)"; "" when it follows no one yet
 std::string authority_text(const msg::FlowStatus& f) {
   if (f.following().size() == 0) return "";
-  std::string text = fmt::format("following {}{}", f.following().c_str(), f.in_force() ? "" : " (NOT IN FORCE)");
+  std::string text = fmt::format("following {}{}{}", f.following().c_str(), f.in_force() ? "" : " (NOT IN FORCE)",
+                                 clock_text(f));
   const uint64_t refused =
       f.refused_other_writer() + f.refused_not_accepted() + f.refused_sequence_jump() + f.refused_invalid();
   if (refused == 0) return text;

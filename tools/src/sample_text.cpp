@@ -168,6 +168,7 @@ void walk(const msg::FlowStatus& f, W& w) {
   w.value("received", static_cast<uint64_t>(f.received()));
   w.value("lost", static_cast<uint64_t>(f.lost()));
   w.value("latency_ns", static_cast<int64_t>(f.latency_ns()));
+  w.value("clock_offset_ns", static_cast<int64_t>(f.clock_offset_ns()));
   w.value("age_ns", static_cast<int64_t>(f.age_ns()));
 }
 

@@ -13,8 +13,14 @@ constexpr int64_t kNsPerS = 1'000'000'000;
 /// CLOCK_MONOTONIC in ns. Real-time safe.
 int64_t monotonic_now_ns();
 
-/// CLOCK_REALTIME in ns since the Unix epoch. Real-time safe.
+/// CLOCK_REALTIME in ns since the Unix epoch, plus realtime_offset_ns(). Real-time safe.
 int64_t system_now_ns();
+
+/// What this process adds to CLOCK_REALTIME: TELEOP_CLOCK_OFFSET_MS from the environment (read
+/// once), else 0. It makes one process a host whose clock is off, to test and show what teleop does
+/// with unsynchronised hosts (docs/clocks.md); everything that reads CLOCK_REALTIME (stamps, DDS
+/// reception times in transport::Reader) reads it through this.
+int64_t realtime_offset_ns();
 
 /// A clock a loop can read and sleep on; abstract so that loop logic is tested with a fake.
 class Clock {

@@ -50,6 +50,10 @@ struct ReceivedTopic {
   /// Samples of nodes the flow does not accept, and newest samples the node found invalid.
   uint64_t refused_not_accepted = 0;
   uint64_t refused_invalid = 0;
+  /// The followed writer's clock against ours at the end, and its largest magnitude over the run
+  /// (transport::Subscription::clock_offset_ns) [ns].
+  int64_t clock_offset_ns = 0;
+  int64_t clock_offset_max_ns = 0;
 };
 
 /// What the impairment did to one outgoing link of the node.
@@ -109,6 +113,8 @@ struct NodeReport {
                                      sub.reader().liveliness_lost(), sub.session()));
     received.back().refused_not_accepted = sub.refused_not_accepted();
     received.back().refused_invalid = sub.rejected();
+    received.back().clock_offset_ns = sub.clock_offset_ns();
+    received.back().clock_offset_max_ns = sub.clock_offset_max_ns();
   }
 
   /// Adds the participant's impaired links.

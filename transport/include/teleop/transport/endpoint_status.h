@@ -51,6 +51,8 @@ struct EndpointStatus {
   std::atomic<uint64_t> lost{0};
   /// One-way latency (source stamp to reception, CLOCK_REALTIME) smoothed over ~64 samples [ns].
   std::atomic<int64_t> latency_ns{0};
+  /// The followed writer's clock against ours (common/clock_offset.h) [ns].
+  std::atomic<int64_t> clock_offset_ns{0};
   /// Who the flow follows, what it refused (readers taken through a Subscription).
   FlowAuthority authority;
 };

@@ -27,7 +27,8 @@ class Reader {
     while (reader_->take_next_sample(&out, &info) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
       // skip state-only notifications (e.g. a writer's disposal) that carry no data
       if (info.valid_data) {
-        reception_ns = info.reception_timestamp.to_ns();
+        // on the clock this process stamps with (common/clock.h)
+        reception_ns = info.reception_timestamp.to_ns() + realtime_offset_ns();
         // the publication handle is the writer's GUID
         const eprosima::fastrtps::rtps::octet* guid = info.publication_handle.value;
         std::memcpy(writer.bytes.data(), guid, writer.bytes.size());
@@ -93,7 +94,8 @@ class Reader {
 
   /// Publishes what the node made of the flow (received, lost, smoothed latency) for NodeStatus
   /// and the tools. Real-time safe (relaxed atomic stores).
-  void report_flow(uint64_t received, uint64_t lost, int64_t latency_ns) {
+  void report_flow(uint64_t received, uint64_t lost, int64_t latency_ns, int64_t clock_offset_ns) {
+    status_->clock_offset_ns.store(clock_offset_ns, std::memory_order_relaxed);
     status_->received.store(received, std::memory_order_relaxed);
     status_->lost.store(lost, std::memory_order_relaxed);
     status_->latency_ns.store(latency_ns, std::memory_order_relaxed);

@@ -20,6 +20,7 @@
 #include <teleop/msg/status.h>
 
 #include "teleop/common/clock.h"
+#include "teleop/common/clock_offset.h"
 #include "teleop/common/fixed_text.h"
 #include "teleop/common/node_event.h"
 #include "teleop/common/refusal_memory.h"
@@ -63,7 +64,7 @@ class Subscription {
     if (candidate_pending_) newest += settle_candidate(now_mono_ns);
     // what the loop works with: how old the newest sample is now
     if (has_sample_) age_.record(system_now_ns() - latest_.header().stamp_ns());
-    reader_.report_flow(tracker_.received(), tracker_.lost(), latency_smoothed_ns_);
+    reader_.report_flow(tracker_.received(), tracker_.lost(), latency_smoothed_ns_, clock_offset_.estimate_ns());
     FlowAuthority& a = reader_.authority();
     a.refused[msg::REFUSAL_OTHER_WRITER] = session_.refused_other_writer();
     a.refused[msg::REFUSAL_SEQUENCE_JUMP] = session_.refused_sequence_jump();
@@ -101,6 +102,12 @@ class Subscription {
   uint64_t rejected() const { return reader_.authority().refused[msg::REFUSAL_INVALID]; }
   /// Age of the newest sample at each poll (source stamp to now, CLOCK_REALTIME).
   const DurationHistogram& age() const { return age_; }
+  /// The followed node's clock against ours, from its samples (common/clock_offset.h): subtract
+  /// it from a sample's age on our clock for its delay beyond the writer's fastest sample [ns].
+  /// Kept over the sessions of one node (a restarted leader), learnt afresh for another node.
+  int64_t clock_offset_ns() const { return clock_offset_.estimate_ns(); }
+  /// The largest |clock_offset_ns()| seen over the run [ns].
+  int64_t clock_offset_max_ns() const { return clock_offset_max_ns_; }
   const Reader<T>& reader() const { return reader_; }
 
  private:
@@ -150,6 +157,7 @@ class Subscription {
 
   int make_newest(T& sample, int64_t reception_ns, int64_t now_mono_ns) {
     record(sample.header(), reception_ns);
+    watch_clock(reception_ns - sample.header().stamp_ns(), sample.header().source(), now_mono_ns);
     // swap, not copy: both buffers keep their capacity, nothing is allocated
     std::swap(latest_, sample);
     has_sample_ = true;
@@ -164,8 +172,30 @@ class Subscription {
     smooth_latency(reception_ns - header.stamp_ns());
   }
 
+  // the followed writer's clock: an estimate far from ours is said once per writer
+  void watch_clock(int64_t apparent_ns, const msg::Name& source, int64_t now_mono_ns) {
+    clock_offset_.add(apparent_ns, now_mono_ns);
+    const int64_t offset_ns = clock_offset_.estimate_ns();
+    clock_offset_max_ns_ = std::max(clock_offset_max_ns_, offset_ns < 0 ? -offset_ns : offset_ns);
+    if (clock_offset_said_ || (offset_ns < kClockOffsetWarnNs && offset_ns > -kClockOffsetWarnNs)) return;
+    clock_offset_said_ = true;
+    NodeEvent e;
+    e.kind = NodeEvent::Kind::kClockOffset;
+    e.mono_ns = now_mono_ns;
+    e.value = static_cast<double>(offset_ns) * 1e-9;
+    e.topic.assign(topic_name_);
+    e.who.assign(std::string_view(source.c_str(), source.size()));
+    events_->push(e);
+  }
+
   void begin_session(const WriterId& writer, const msg::Name& source, int64_t now_mono_ns) {
     tracker_.begin_session();
+    // the clock is the node's: a restarted writer of the same node keeps it (and its first command
+    // is judged against what its predecessor's samples taught), another node may run elsewhere
+    if (!(reader_.authority().following == std::string_view(source.c_str(), source.size()))) {
+      clock_offset_.reset();
+      clock_offset_said_ = false;
+    }
     latest_writer_ = writer;
     reader_.authority().following.assign(std::string_view(source.c_str(), source.size()));
     reader_.authority().following_writer.assign(writer.hex().data());
@@ -209,8 +239,14 @@ class Subscription {
     latency_smoothed_ns_ = tracker_.received() == 1 ? latency_ns : latency_smoothed_ns_ + (latency_ns - latency_smoothed_ns_) / 64;
   }
 
+  // beyond this the two clocks (or the fastest path between them) are worth a line in the log
+  static constexpr int64_t kClockOffsetWarnNs = 10'000'000;
+
   std::string topic_name_;
   Reader<T> reader_;
+  ClockOffsetEstimate clock_offset_;
+  int64_t clock_offset_max_ns_ = 0;
+  bool clock_offset_said_ = false;
   StreamSession session_;
   NodeEventQueue* events_;
   std::vector<FixedText<32>> accepted_;
