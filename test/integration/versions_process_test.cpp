@@ -3,6 +3,7 @@
 // enable while it talks, and resumes on `teleop enable` once it is gone.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <string>
@@ -39,6 +40,12 @@ class OtherRelease {
       std::this_thread::sleep_for(100ms);
     }
   }
+  void talk_until(const std::atomic<bool>& done) {
+    while (!done) {
+      (void)status_.publish();
+      std::this_thread::sleep_for(100ms);
+    }
+  }
 
  private:
   transport::Participant participant_;
@@ -66,9 +73,11 @@ TEST(Versions, ANodeOfAnotherReleaseStopsThePairNamingBothVersionsUntilItIsGoneA
     EXPECT_NE(node->output().find(theirs), std::string::npos) << node->output();
     EXPECT_NE(node->output().find(ours), std::string::npos) << node->output();
   }
-  // while it talks an enable changes nothing
-  std::thread talking([&] { other.talk_for(2s); });
+  // while it talks an enable changes nothing (it talks until the enable was acknowledged)
+  std::atomic<bool> acknowledged{false};
+  std::thread talking([&] { other.talk_until(acknowledged); });
   EXPECT_EQ(enable(site.domain), 0);
+  acknowledged = true;
   talking.join();
   // gone (its status older than 3 s), the nodes wait for the deliberate enable
   ASSERT_TRUE(follower.wait_for_output("the node of another version is gone", 10s)) << follower.output();

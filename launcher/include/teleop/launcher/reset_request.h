@@ -24,7 +24,8 @@ using ResetOptions = BusRequestOptions;
 
 /// Sends the request and waits until every matched reader has acknowledged it; returns how many
 /// readers did, 0 when none matched or they did not acknowledge within the timeout. Throws
-/// ConfigError on a bad config.
+/// ConfigError on a bad config. A stop or enable goes out at the first reader's match and again to
+/// readers matched later, until every node of this release heard on the domain within 1.5 s has it.
 int send_reset(const ResetOptions& options);
 /// An emergency stop (`engaged`) or the enable that ends one, said to come from `origin`.
 int send_emergency_stop(const BusRequestOptions& options, bool engaged, const std::string& origin);
