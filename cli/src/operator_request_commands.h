@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "teleop/launcher/reset_request.h"
+#include "teleop/launcher/operator_requests.h"
 
 namespace teleop::cli {
 

@@ -4,7 +4,7 @@
 #include <string_view>
 
 #include "teleop/common/clock.h"
-#include "teleop/common/version.h"
+#include "teleop/runtime/node_release.h"
 
 namespace teleop::runtime {
 
@@ -14,14 +14,9 @@ PeerVersions::PeerVersions(transport::Participant& participant, std::string self
                                         gate_.guard(std::function<void(const msg::NodeStatus&)>(
                                             [this](const msg::NodeStatus& s) { judge(s); })))) {}
 
-uint32_t PeerVersions::protocol() { return kProtocolVersion; }
-
-const char* PeerVersions::messages() { return message_version(); }
-
 void PeerVersions::judge(const msg::NodeStatus& status) {
   const std::string_view source(status.header().source().c_str());
-  if (status.protocol_version() == 0 || source == self_) return;
-  if (status.protocol_version() == protocol() && std::string_view(status.message_version().c_str()) == messages()) return;
+  if (!says_its_release(status) || speaks_this_release(status) || source == self_) return;
   {
     const std::lock_guard<std::mutex> lock(words_);
     last_.peer.assign(source);

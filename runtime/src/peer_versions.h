@@ -49,10 +49,6 @@ class PeerVersions {
   /// Copies the last mismatch into `out` unless the words are being written; false then. Real-time safe.
   bool last_mismatch(VersionMismatch& out) const;
 
-  /// Ours, as every status says them.
-  static uint32_t protocol();
-  static const char* messages();
-
  private:
   void judge(const msg::NodeStatus& status);  // Fast DDS's thread
 

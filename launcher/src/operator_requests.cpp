@@ -1,4 +1,4 @@
-#include "teleop/launcher/reset_request.h"
+#include "teleop/launcher/operator_requests.h"
 
 #include <algorithm>
 #include <chrono>
@@ -8,7 +8,7 @@
 
 #include "teleop/common/clock.h"
 #include "teleop/common/config.h"
-#include "teleop/common/version.h"
+#include "teleop/runtime/node_release.h"
 #include "teleop/transport/participant.h"
 #include "teleop/transport/participant_config.h"
 #include "teleop/transport/publication.h"
@@ -47,9 +47,7 @@ int send_to_every_node(transport::Participant& participant, transport::Publicati
   int32_t sent_to = 0;
   for (;;) {
     while (statuses.take_next(status)) {
-      const bool ours = status.protocol_version() == kProtocolVersion &&
-                        std::string_view(status.message_version().c_str()) == message_version();
-      if (ours) nodes.insert(status.header().source().c_str());
+      if (runtime::speaks_this_release(status)) nodes.insert(status.header().source().c_str());
     }
     const int32_t matched = request.matched();
     if (matched > sent_to) {
