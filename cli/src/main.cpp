@@ -5,6 +5,7 @@
 // `teleop fidelity-study STUDY.yaml` the coupling thesis's twin accuracy and wiping studies (fidelity_study_command.h);
 // `teleop topic`, `monitor`, `record`, `replay` (bus_commands.h) look at and keep the bus,
 // `teleop bag info|convert|repair|export` (bag_commands.h) handle recordings;
+// `teleop doctor` checks this host for a 1 kHz node (doctor_command.h);
 // `teleop view` shows the robot live, `teleop render RUN_DIR` makes a video of a run (view_command.h).
 #include <CLI/CLI.hpp>
 
@@ -23,6 +24,7 @@
 #include "bag_commands.h"
 #include "bus_commands.h"
 #include "config_option.h"
+#include "doctor_command.h"
 #include "fidelity_study_command.h"
 #include "hand_study_command.h"
 #include "operator_request_commands.h"
@@ -111,6 +113,7 @@ int main(int argc, char** argv) {
   soak_cmd->add_option("--report-dir", soak_options.report_dir, "traces, reports and logs (default: a new folder in /tmp)");
   soak_cmd->add_option("--bin-dir", soak_options.bin_dir, "directory of the node executables");
   const teleop::cli::OperatorRequestCommands operator_requests(app);
+  const teleop::cli::DoctorCommand doctor(app);
   BusCommands bus_commands(app);
   const teleop::cli::BagCommands bag_commands(app);
   const teleop::cli::PlotCommand plot(app);
@@ -131,6 +134,7 @@ int main(int argc, char** argv) {
     if (hand_study.parsed()) return hand_study.run();
     if (fidelity_study.parsed()) return fidelity_study.run();
     if (const auto rc = operator_requests.run()) return *rc;
+    if (const auto rc = doctor.run()) return *rc;
     if (soak_cmd->parsed()) {
       using namespace teleop::experiment;
       const SoakResult result = run_soak(load_soak(soak_path), soak_options);
