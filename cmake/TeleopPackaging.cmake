@@ -31,6 +31,21 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/idl/ DESTINATION ${TELEOP_DATA_DIR}/idl 
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/idl/ros2/teleop_msgs DESTINATION ${TELEOP_DATA_DIR}/ros2)
 install(FILES ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR} RENAME copyright)
 
+# A lab machine's provisioning (provisioning/, docs/provisioning.md): the limits, the udev rules,
+# the units and the CAN bring-up, at the paths the system reads them from. They form the component
+# `system`, which the package installs (CPACK_INSTALL_CMAKE_PROJECTS below) and a plain
+# `cmake --install` leaves alone: an install into a prefix never writes /etc. The same files go to
+# share/teleop/provisioning for an install from source to copy by hand.
+set(provisioning ${PROJECT_SOURCE_DIR}/provisioning)
+install(FILES ${provisioning}/95-teleop.conf DESTINATION /etc/security/limits.d COMPONENT system EXCLUDE_FROM_ALL)
+install(FILES ${provisioning}/can/can0.conf DESTINATION /etc/teleop/can COMPONENT system EXCLUDE_FROM_ALL)
+install(FILES ${provisioning}/60-teleop.rules DESTINATION /usr/lib/udev/rules.d COMPONENT system EXCLUDE_FROM_ALL)
+install(FILES ${provisioning}/teleop-node@.service ${provisioning}/teleop-can@.service ${provisioning}/teleop.slice
+  DESTINATION /usr/lib/systemd/system COMPONENT system EXCLUDE_FROM_ALL)
+install(DIRECTORY ${provisioning}/ DESTINATION ${TELEOP_DATA_DIR}/provisioning
+  PATTERN postinst EXCLUDE PATTERN postrm EXCLUDE)
+install(FILES ${PROJECT_SOURCE_DIR}/docs/provisioning.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+
 # everything the install copies and nothing else (no tests, no benchmarks): what the package
 # script builds, what the install test needs built
 add_custom_target(teleop_installables)
@@ -59,7 +74,8 @@ endif()
 ]=])
 
 # `cpack -G DEB` in the build directory (scripts/package.sh): teleop_<version>_amd64.deb, one
-# package with the executables, the libraries, the headers, the CMake files and the data.
+# package with the executables, the libraries, the headers, the CMake files, the data and the
+# provisioning.
 set(CPACK_PACKAGE_NAME teleop)
 set(CPACK_PACKAGE_VENDOR "teleop")
 set(CPACK_PACKAGE_CONTACT "teleop maintainers <teleop@localhost>")
@@ -84,4 +100,13 @@ set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3, python3-matplotlib")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS
     "libfastrtps-dev, libfastcdr-dev, libyaml-cpp-dev, libeigen3-dev, libmujoco-dev, libqhull-dev, libcli11-dev, fastdds-tools, can-utils")
+# everything a plain install copies, and the system component
+set(CPACK_INSTALL_CMAKE_PROJECTS "${CMAKE_BINARY_DIR};teleop;ALL;/;${CMAKE_BINARY_DIR};teleop;system;/")
+# what dpkg keeps a local edit of (/etc), and the user and group teleop made at installation
+file(WRITE ${CMAKE_BINARY_DIR}/debian/conffiles "/etc/security/limits.d/95-teleop.conf\n/etc/teleop/can/can0.conf\n")
+set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA
+    ${CMAKE_BINARY_DIR}/debian/conffiles ${provisioning}/postinst ${provisioning}/postrm)
+set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION ON)
+# adduser for the postinst's system user
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "adduser")
 include(CPack)

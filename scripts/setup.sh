@@ -31,6 +31,9 @@ test_packages=(
   # idlc is in cyclonedds-tools, not in -dev (a fresh machine had the headers and no idlc)
   cyclonedds-dev cyclonedds-tools
   can-utils iproute2
+  # the package test (test/install/package_test.sh): systemd-analyze verify of the units against
+  # systemd's own targets (a container may lack them)
+  systemd
   # multi-host and security tests (test/netns): namespaces, the PKI script, packet capture
   openssl tcpdump
   # vcan HIL harness (test/vcan/run_in_vm.sh): a qemu VM with Debian's kernel and a busybox initramfs

@@ -1,21 +1,25 @@
 // A CAN interface as iproute2 reports it (host_reader.h). Its bitrate and controller state come
 // over netlink only; `ip -details -json` is the kernel's own tool saying it, with a stable JSON
 // form, on every Debian host.
-#include <cctype>
-#include <cstdio>
+#include <poll.h>
+
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "teleop/doctor/host_reader.h"
+#include "teleop/launcher/child_process.h"
+#include "teleop/launcher/launcher.h"
 
 namespace teleop::doctor {
 
 CanLink parse_ip_link(const std::string& name, const std::string& ip_json) {
   CanLink link;
   link.name = name;
-  if (ip_json.find_first_not_of(" \t\r\n") == std::string::npos) return link;  // ip: "Device does not exist"
+  if (ip_json.find_first_not_of(" \t\r\n") == std::string::npos) return link;  // no answer: no such interface
   const nlohmann::json all = nlohmann::json::parse(ip_json, nullptr, false);
   if (all.is_discarded() || !all.is_array()) throw std::runtime_error("ip -json link: not a JSON array: " + ip_json);
   for (const nlohmann::json& entry : all) {
@@ -33,21 +37,32 @@ CanLink parse_ip_link(const std::string& name, const std::string& ip_json) {
   return link;
 }
 
-CanLink read_can_link(const std::string& name) {
-  // an interface name has no shell characters (IFNAMSIZ, no '/' or space); refuse anything else
-  for (const char c : name) {
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') {
-      throw std::runtime_error("not an interface name: '" + name + "'");
-    }
+namespace {
+
+// runs `ip` found on PATH (no shell: a shell may prefer its own applet, as busybox's does) and
+// returns its exit status and what it wrote to stdout and stderr
+int run_ip(const std::vector<std::string>& args, std::string& out) {
+  std::vector<std::string> argv = {launcher::find_executable("ip", "")};
+  argv.insert(argv.end(), args.begin(), args.end());
+  launcher::ChildProcess ip = launcher::ChildProcess::spawn(argv);
+  while (ip.output_fd() >= 0) {
+    pollfd readable{ip.output_fd(), POLLIN, 0};
+    ::poll(&readable, 1, 1000);
+    ip.read_output([&](std::string_view line) { out.append(line).append("\n"); });
   }
-  const std::string command = "ip -details -json link show dev " + name + " 2>/dev/null";
-  FILE* ip = ::popen(command.c_str(), "r");
-  if (ip == nullptr) throw std::runtime_error("could not run ip (iproute2)");
+  return ip.wait_for(5000).value_or(128);
+}
+
+}  // namespace
+
+CanLink read_can_link(const std::string& name) {
   std::string out;
-  char buffer[4096];
-  while (const size_t n = std::fread(buffer, 1, sizeof(buffer), ip)) out.append(buffer, n);
-  ::pclose(ip);
-  return parse_ip_link(name, out);
+  if (run_ip({"-details", "-json", "link", "show", "dev", name}, out) == 0) return parse_ip_link(name, out);
+  CanLink link;
+  link.name = name;
+  // ip's own words for an interface that is not there; anything else is ip failing
+  if (out.find("does not exist") == std::string::npos) link.error = "ip -details -json link: " + out;
+  return link;
 }
 
 }  // namespace teleop::doctor

@@ -25,6 +25,10 @@ std::string bring_up(const CanNeed& need) {
 Finding check_can_link(const CanLink* link, const CanNeed& need) {
   const std::string check = need.interface;
   const std::string whose = " (" + need.node + ", " + need.file + ")";
+  if (link != nullptr && !link->error.empty()) {
+    return {check, Verdict::kFail, "could not be looked at" + whose + ": " + link->error,
+            "install iproute2 (ip -details -json link)"};
+  }
   if (link == nullptr || !link->exists) {
     return {check, Verdict::kFail, "no such interface" + whose,
             "connect the adapter, or for a virtual bus: sudo modprobe vcan && sudo ip link add " + need.interface +

@@ -112,22 +112,26 @@ TEST(DoctorCan, AMissingOrDownBusFailsWithItsBringUp) {
   EXPECT_EQ(missing[0].verdict, Verdict::kFail);
   EXPECT_EQ(missing[0].check, "can0");
   EXPECT_NE(missing[0].found.find("hand.yaml"), std::string::npos);
-  const auto down = check_can({{"can0", true, "can", false, 0, "STOPPED"}}, needing_can("can0", 1e6));
+  const auto down = check_can({{"can0", true, "can", false, 0, "STOPPED", ""}}, needing_can("can0", 1e6));
   EXPECT_EQ(down[0].verdict, Verdict::kFail);
   EXPECT_NE(down[0].fix.find("sudo ip link set can0 type can bitrate 1000000"), std::string::npos) << down[0].fix;
-  const auto not_can = check_can({{"can0", true, "veth", true, 0, ""}}, needing_can("can0", 1e6));
+  const auto not_can = check_can({{"can0", true, "veth", true, 0, "", ""}}, needing_can("can0", 1e6));
   EXPECT_EQ(not_can[0].verdict, Verdict::kFail);
+  const auto no_ip = check_can({{"can0", false, "", false, 0, "", "Option \"-json\" is unknown"}}, needing_can("can0", 1e6));
+  EXPECT_EQ(no_ip[0].verdict, Verdict::kFail);
+  EXPECT_NE(no_ip[0].found.find("could not be looked at"), std::string::npos) << no_ip[0].found;
+  EXPECT_NE(no_ip[0].found.find("-json"), std::string::npos) << no_ip[0].found;
 }
 
 TEST(DoctorCan, TheBitrateMustBeTheConfigsAndTheControllerOnTheBus) {
   const HostNeeds needs = needing_can("can0", 1e6);
-  EXPECT_EQ(check_can({{"can0", true, "can", true, 1000000, "ERROR-ACTIVE"}}, needs)[0].verdict, Verdict::kOk);
-  const auto slow = check_can({{"can0", true, "can", true, 500000, "ERROR-ACTIVE"}}, needs);
+  EXPECT_EQ(check_can({{"can0", true, "can", true, 1000000, "ERROR-ACTIVE", ""}}, needs)[0].verdict, Verdict::kOk);
+  const auto slow = check_can({{"can0", true, "can", true, 500000, "ERROR-ACTIVE", ""}}, needs);
   EXPECT_EQ(slow[0].verdict, Verdict::kFail);
   EXPECT_NE(slow[0].found.find("500000 bit/s, the config plans 1000000"), std::string::npos) << slow[0].found;
-  EXPECT_EQ(check_can({{"can0", true, "can", true, 1000000, "BUS-OFF"}}, needs)[0].verdict, Verdict::kFail);
-  EXPECT_EQ(check_can({{"can0", true, "can", true, 1000000, "ERROR-PASSIVE"}}, needs)[0].verdict, Verdict::kWarn);
-  EXPECT_EQ(check_can({{"can0", true, "vcan", true, 0, ""}}, needs)[0].verdict, Verdict::kOk) << "vcan has no bitrate";
+  EXPECT_EQ(check_can({{"can0", true, "can", true, 1000000, "BUS-OFF", ""}}, needs)[0].verdict, Verdict::kFail);
+  EXPECT_EQ(check_can({{"can0", true, "can", true, 1000000, "ERROR-PASSIVE", ""}}, needs)[0].verdict, Verdict::kWarn);
+  EXPECT_EQ(check_can({{"can0", true, "vcan", true, 0, "", ""}}, needs)[0].verdict, Verdict::kOk) << "vcan has no bitrate";
 }
 
 TEST(DoctorInputDevices, OnlyTheDevicesTheRulesGrantAreJudged) {

@@ -54,6 +54,7 @@ struct CanLink {
   bool up = false;
   uint64_t bitrate_bps = 0;        ///< 0: none set (vcan has none)
   std::string state;               ///< the controller's state: ERROR-ACTIVE, BUS-OFF, ...
+  std::string error;               ///< why `ip` could not say ("" when it did)
 };
 
 struct InputDeviceFacts {

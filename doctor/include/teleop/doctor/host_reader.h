@@ -28,7 +28,7 @@ ProvisioningFacts read_provisioning(const std::string& root);
 /// One interface out of `ip -details -json link show dev NAME`'s answer ("" or not JSON: it
 /// does not exist). Throws std::runtime_error for JSON that is not ip's.
 CanLink parse_ip_link(const std::string& name, const std::string& ip_json);
-/// Asks `ip` (iproute2).
+/// Asks `ip` (iproute2); what ip answers other than "does not exist" is kept in CanLink::error.
 CanLink read_can_link(const std::string& name);
 
 }  // namespace teleop::doctor
