@@ -1,6 +1,7 @@
 #include "teleop/follower/follower_config.h"
 
 #include <cmath>
+#include <limits>
 
 #include "teleop/common/joint_config.h"
 #include "teleop/control/types.h"
@@ -13,13 +14,15 @@ namespace {
 control::JointVector to_eigen(const JointVector& v) { return Eigen::Map<const control::JointVector>(v.data()); }
 
 void read_joint_limits(const ConfigNode& s, size_t n, JointLimits& l) {
-  l.q_min_rad = read_joint_list(s, "q_min_rad", n, kJointAngleRange, -2.8);
-  l.q_max_rad = read_joint_list(s, "q_max_rad", n, kJointAngleRange, 2.8);
+  // unset: the robot's own (its model's ranges and motor limits; limits_in_force.h)
+  constexpr double kRobots = std::numeric_limits<double>::infinity();
+  l.q_min_rad = read_joint_list(s, "q_min_rad", n, kJointAngleRange, -kRobots);
+  l.q_max_rad = read_joint_list(s, "q_max_rad", n, kJointAngleRange, kRobots);
   for (size_t i = 0; i < n; ++i) {
     if (l.q_min_rad[i] >= l.q_max_rad[i]) throw s.error("q_max_rad", "must exceed q_min_rad for every joint");
   }
   l.max_velocity_radps = s.get_double("max_velocity_radps", Range{0.01, 100}, l.max_velocity_radps);
-  l.max_torque_nm = read_joint_list(s, "max_torque_nm", n, Range{0.1, 1e4}, 80.0);
+  l.max_torque_nm = read_joint_list(s, "max_torque_nm", n, Range{0.1, 1e4}, kRobots);
   l.max_stiffness_nm_per_rad = s.get_double("max_stiffness_nm_per_rad", Range{0, 1e6}, l.max_stiffness_nm_per_rad);
   l.max_damping_nms_per_rad = s.get_double("max_damping_nms_per_rad", Range{0, 1e5}, l.max_damping_nms_per_rad);
   l.max_command_age_s = s.get_bound_or_off("max_command_age_ms", Range{1, 60'000}, l.max_command_age_s * 1e3) * 1e-3;

@@ -4,7 +4,10 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <spdlog/spdlog.h>
+
 #include "architectures/follower_architectures.h"
+#include "limits_in_force.h"
 #include "teleop/common/clock.h"
 #include "teleop/transport/arm_topic.h"
 #include "teleop/transport/joint_fields.h"
@@ -12,16 +15,9 @@
 namespace teleop::follower {
 namespace {
 
-// the configured limits, tightened to what the robot itself can do
+// the robot's own limits, tightened by the configured ones
 JointLimits effective_limits(const FollowerConfig& config, const robot::RobotHardware& hardware) {
-  JointLimits l = config.limits;
-  const robot::HardwareLimits h = hardware.limits();
-  for (size_t i = 0; i < config.joints; ++i) {
-    l.q_min_rad[i] = std::max(l.q_min_rad[i], h.q_min_rad[i]);
-    l.q_max_rad[i] = std::min(l.q_max_rad[i], h.q_max_rad[i]);
-    l.max_torque_nm[i] = std::min(l.max_torque_nm[i], h.max_torque_nm[i]);
-  }
-  return l;
+  return limits_in_force(config.limits, hardware.limits(), config.joints, hardware.name());
 }
 
 // a command stream follows one sender; another may take over once that one has been silent for a
@@ -66,6 +62,7 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<robot::
     throw std::runtime_error("follower.joints is " + std::to_string(config.joints) + " but the robot (" +
                              hardware_->name() + ") has " + std::to_string(hardware_->joints()) + " joints");
   }
+  spdlog::info("{}: joint limits {}", context.node.name, limits_text(validator_.limits(), config.limits, config.joints));
   auto& st = state_pub_.sample();
   st.robot(hardware_->name());
   st.arm(transport::arm_label(config.arm));
