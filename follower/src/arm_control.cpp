@@ -39,6 +39,7 @@ ArmControl::ArmControl(const ArmControlConfig& config, double cycle_s)
     case ExternalTorqueSource::kDirect: published_ = &direct_.external_torque(); break;
     case ExternalTorqueSource::kHardware: published_ = &hardware_estimate_; break;
   }
+  calibrated_estimate_ = config.published_estimate != ExternalTorqueSource::kHardware;
 }
 
 void ArmControl::load_state(const robot::ArmState& arm) {
@@ -72,6 +73,10 @@ const control::JointVector& ArmControl::compute(const robot::ArmState& arm, cons
   load_command(command);
   switch_.select(static_cast<int>(command.mode));
   tau_ = switch_.compute(state_, command_);
+  // the payload held as the arm's own weight is (free when a controller brought the dynamics to state_)
+  dynamics_.update(state_);
+  payload_torque_ = control::payload_torque(dynamics_, config_.calibration.payload);
+  tau_ -= payload_torque_;
   return tau_;
 }
 
@@ -98,7 +103,10 @@ void ArmControl::estimate(const robot::ArmState& arm) {
   } else {
     hardware_estimate_ = first_joints(arm.tau_ext_nm);
   }
-  wrench_ = control::wrench_from_torque(dynamics_, *published_);
+  payload_torque_ = control::payload_torque(dynamics_, config_.calibration.payload);
+  external_ = *published_;
+  if (calibrated_estimate_) external_ -= payload_torque_ + config_.calibration.torque_bias_nm;
+  wrench_ = control::wrench_from_torque(dynamics_, external_);
   hardware_wrench_ = control::wrench_from_torque(dynamics_, hardware_estimate_);
 }
 

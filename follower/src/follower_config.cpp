@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "calibration_file.h"
 #include "teleop/common/joint_config.h"
 #include "teleop/control/types.h"
 #include "teleop/runtime/arm_configs.h"
@@ -107,7 +108,8 @@ FollowerConfig arm_config(const FollowerConfig& shared, const std::string& name,
 
 }  // namespace
 
-FollowerConfig parse_follower_config(const ConfigNode& root, const robot::HardwareRegistry& hardware) {
+FollowerConfig parse_follower_config(const ConfigNode& root, const robot::HardwareRegistry& hardware,
+                                     CalibrationUse calibration) {
   const ConfigNode s = root.child("follower");
   FollowerConfig c;
   c.joints = read_joint_count(s);
@@ -141,6 +143,13 @@ FollowerConfig parse_follower_config(const ConfigNode& root, const robot::Hardwa
   c.hold_stiffness_nm_per_rad = s.get_double("hold_stiffness_nm_per_rad", Range{0, 1e5}, c.hold_stiffness_nm_per_rad);
   c.hold_damping_nms_per_rad = s.get_double("hold_damping_nms_per_rad", Range{0, 1e4}, c.hold_damping_nms_per_rad);
   c.control = read_control(s.child("control"), c.joints, s.has("arms"));
+  if (const auto section = s.optional_child("calibration")) {
+    c.calibration_file = calibration_file_of(*section);
+    c.calibration_plan = read_calibration_plan(*section);
+    if (calibration == CalibrationUse::kApply && !c.calibration_file.empty()) {
+      c.control.calibration = applied_calibration(*section, c.calibration_file);
+    }
+  }
   c.reflex = read_reflex(s, c.joints);
   if (s.has("tracked_objects")) {
     if (!s.has("arms")) throw s.error("tracked_objects", "needs the shared scene of follower.arms");

@@ -63,6 +63,13 @@ FollowerNode::FollowerNode(const FollowerConfig& config, std::unique_ptr<robot::
                              hardware_->name() + ") has " + std::to_string(hardware_->joints()) + " joints");
   }
   spdlog::info("{}: joint limits {}", context.node.name, limits_text(validator_.limits(), config.limits, config.joints));
+  if (!config.calibration_file.empty()) {
+    const control::ArmCalibration& c = config.control.calibration;
+    spdlog::info("{}: calibration {}: payload {:.4f} kg at [{:.4f}, {:.4f}, {:.4f}] m held and taken out of the external "
+                 "torque, with a bias of up to {:.3f} Nm",
+                 context.node.name, config.calibration_file, c.payload.mass_kg, c.payload.com_m.x(), c.payload.com_m.y(),
+                 c.payload.com_m.z(), c.torque_bias_nm.cwiseAbs().maxCoeff());
+  }
   auto& st = state_pub_.sample();
   st.robot(hardware_->name());
   st.arm(transport::arm_label(config.arm));

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "teleop/common/joint_config.h"
 #include "teleop/sim/model_config.h"
 
 namespace teleop::robot {
@@ -25,6 +26,13 @@ std::shared_ptr<const MujocoHardwareSpec> parse_mujoco_hardware(const ConfigNode
   config.keyframe = mujoco.get_string("keyframe", "");
   if (const auto real = mujoco.optional_child("real_robot")) config.real_robot = sim::read_real_robot(*real);
   config.gravity_compensated = mujoco.get_bool("gravity_compensated", true);
+  if (const auto payload = mujoco.optional_child("payload")) {
+    SimulatedPayload p;
+    p.mass_kg = payload->get_double("mass_kg", Range{0.001, 100});
+    p.com_m = read_vector3(*payload, "com_m", Range{-1, 1}, p.com_m);
+    p.site = payload->get_string("site", config.ee_site);
+    config.payload = p;
+  }
   return std::make_shared<const MujocoHardwareSpec>(config);
 }
 

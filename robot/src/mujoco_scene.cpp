@@ -4,24 +4,39 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "simulated_payload.h"
+#include "teleop/sim/model_additions.h"
+
 namespace teleop::robot {
 namespace {
 
 void delete_data(mjData* d) { mj_deleteData(d); }
 void delete_model(mjModel* m) { mj_deleteModel(m); }
 
+// the scene, with the payload's body under the site's body when there is one
+sim::MujocoModel load_scene(const MujocoSceneConfig& config) {
+  if (!config.payload) return sim::MujocoModel::load(config.model_path);
+  const sim::MujocoModel base = sim::MujocoModel::load(config.model_path);
+  return sim::load_with_additions(config.model_path, {payload_addition(base.model(), config.model_path, *config.payload)});
+}
+
 }  // namespace
 
 MujocoScene::MujocoScene(const MujocoSceneConfig& config)
-    : sim_(sim::MujocoModel::load(config.model_path)),
+    : sim_(load_scene(config)),
       nominal_(nullptr, delete_model),
       rest_(nullptr, delete_data),
       real_robot_(config.real_robot),
       file_name_(std::filesystem::path(config.model_path).filename().string()) {
+  if (config.payload) {
+    // the robot compensates the gravity of the arm it was told about, without the tool
+    nominal_.reset(mj_copyModel(nullptr, sim::MujocoModel::load(config.model_path).model()));
+  } else if (real_robot_) {
+    nominal_.reset(mj_copyModel(nullptr, sim_.model()));
+  }
+  if ((config.payload || real_robot_) && !nominal_) throw std::runtime_error(config.model_path + ": cannot copy the model");
   if (real_robot_) {
     // every arm of the scene off by its own draw; gravity compensation from the model as it was
-    nominal_.reset(mj_copyModel(nullptr, sim_.model()));
-    if (!nominal_) throw std::runtime_error(config.model_path + ": cannot copy the model");
     const sim::ActuatedJoints joints = sim::find_actuated_joints(sim_.model(), config.model_path);
     perturbation_ = sim::perturb_plant(sim_.model(), sim_.data(), joints, real_robot_->perturbation,
                                        sim::derived_seed(real_robot_->seed, 0));

@@ -12,6 +12,7 @@
 #include "teleop/control/controller_switch.h"
 #include "teleop/control/controllers.h"
 #include "teleop/control/estimators.h"
+#include "teleop/control/payload.h"
 #include "teleop/follower/command_validator.h"
 #include "teleop/robot/robot_hardware.h"
 #include "teleop/sim/mujoco_model.h"
@@ -36,6 +37,9 @@ struct ArmControlConfig {
   /// K_O of the momentum observer [1/s] (bandwidth of its estimate).
   double observer_gain_per_s = 100.0;
   ExternalTorqueSource published_estimate = ExternalTorqueSource::kMomentumObserver;
+  /// What the model lacks (docs/calibration.md): the payload's weight is held (added to the
+  /// commanded torque) and, with the bias, taken out of the estimated external torque.
+  control::ArmCalibration calibration;
 };
 
 class ArmControl {
@@ -54,10 +58,14 @@ class ArmControl {
   const control::JointVector& gravity() const { return dynamics_.gravity(); }
   /// The arm's joint-space inertia at the last estimate.
   const control::JointMatrix& mass() const { return dynamics_.mass(); }
-  /// The external joint torque chosen by `published_estimate`, and both estimators' own.
-  const control::JointVector& external_torque() const { return *published_; }
+  /// The external joint torque chosen by `published_estimate`, less the calibrated payload and
+  /// bias for the two estimators (the hardware's own knows its load); and both estimators' own,
+  /// as they see the arm (what a calibration fits).
+  const control::JointVector& external_torque() const { return external_; }
   const control::JointVector& observer_torque() const { return observer_.external_torque(); }
   const control::JointVector& direct_torque() const { return direct_.external_torque(); }
+  /// The joint torque the calibrated payload's weight exerts at the last state (zero without one).
+  const control::JointVector& payload_torque() const { return payload_torque_; }
   /// End-effector wrench from external_torque() (force, moment; base frame, at the site).
   const control::Vector6& wrench() const { return wrench_; }
   /// The wrench of the hardware's own external torque (a simulation's ground truth).
@@ -87,6 +95,9 @@ class ArmControl {
   control::DirectEstimator direct_;
   control::JointVector hardware_estimate_ = control::JointVector::Zero();
   const control::JointVector* published_;
+  bool calibrated_estimate_;  // the published estimate is one of ours, which the calibration corrects
+  control::JointVector payload_torque_ = control::JointVector::Zero();
+  control::JointVector external_ = control::JointVector::Zero();
   control::ArmState state_;
   control::ArmCommand command_;
   control::JointVector tau_ = control::JointVector::Zero();

@@ -8,6 +8,7 @@
 #include "teleop/common/config.h"
 #include "teleop/follower/arm_control.h"
 #include "teleop/follower/command_validator.h"
+#include "teleop/follower/payload_calibration.h"
 #include "teleop/follower/safety_reflex.h"
 #include "teleop/robot/hardware_registry.h"
 #include "teleop/robot/mujoco_backend.h"
@@ -58,12 +59,22 @@ struct FollowerConfig {
   ObjectPoseFeedConfig tracked_objects;
   /// The architecture the follower plays its part in (absent: a plain follower of `command_source`).
   std::optional<runtime::TeleoperationConfig> teleoperation;
+  /// The robot's calibration file (`follower.calibration.file`, docs/calibration.md): applied at
+  /// start into control.calibration; "" when none. teleop_calibrate writes it.
+  std::string calibration_file;
+  /// The poses and times teleop_calibrate drives (`follower.calibration`).
+  PayloadCalibrationPlan calibration_plan;
 };
+
+/// Whether parsing reads the calibration file into control.calibration (a node) or leaves the
+/// model as it is (teleop_calibrate, which measures what the model lacks).
+enum class CalibrationUse { kApply, kIgnore };
 
 /// Reads the `follower:` section, the robot from `hardware`'s backends; throws ConfigError naming
 /// file, key and problem.
 FollowerConfig parse_follower_config(const ConfigNode& root,
-                                     const robot::HardwareRegistry& hardware = robot::simulated_hardware());
+                                     const robot::HardwareRegistry& hardware = robot::simulated_hardware(),
+                                     CalibrationUse calibration = CalibrationUse::kApply);
 
 /// One config per arm: the `follower:` section with each arm's own keys applied (each arm on its
 /// prefix of the shared scene), in the file's order; a single unnamed arm without

@@ -4,6 +4,7 @@
 // between them (scene_box_shelf.xml): arms that touch the same object must share one simulation.
 // Each arm is a MujocoHardware view onto it; the scene advances by one control period per step().
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -12,6 +13,15 @@
 #include "teleop/sim/plant_perturbation.h"
 
 namespace teleop::robot {
+
+/// A tool on an arm's flange that the robot's own gravity compensation does not know, as a tool
+/// changed without telling the robot (docs/calibration.md): a point mass at `com_m` in the frame
+/// of `site`, added to the simulated arm only.
+struct SimulatedPayload {
+  double mass_kg = 0.0;
+  std::array<double, 3> com_m{};
+  std::string site = "ee_site";
+};
 
 struct MujocoSceneConfig {
   /// MJCF file of the scene.
@@ -24,6 +34,8 @@ struct MujocoSceneConfig {
   /// these bounds, their sensors noisy, drawn from its seed. The robot's own gravity compensation
   /// stays the nominal model's, as a real robot's comes from its maker's model.
   std::optional<sim::RealRobotSpec> real_robot;
+  /// A payload on the flange (none: the arm as modelled).
+  std::optional<SimulatedPayload> payload;
 };
 
 class MujocoScene {
@@ -35,7 +47,7 @@ class MujocoScene {
   void step();
   /// Gravity torque of every degree of freedom at the current pose, computed once per period on
   /// a second mjData at rest, so the simulation itself is not disturbed; by the nominal model
-  /// when the scene is a perturbed "real" robot. Real-time safe.
+  /// when the scene is a perturbed "real" robot or carries a payload. Real-time safe.
   const mjtNum* gravity();
   /// The perturbation drawn for a "real" robot (empty otherwise).
   const sim::AppliedPerturbation& perturbation() const { return perturbation_; }
@@ -50,7 +62,8 @@ class MujocoScene {
 
  private:
   sim::MujocoModel sim_;
-  // the nominal model a "real" robot compensates gravity with (null: the simulated one)
+  // the nominal model a "real" robot or one with a payload compensates gravity with (null: the
+  // simulated one)
   std::unique_ptr<mjModel, void (*)(mjModel*)> nominal_;
   std::unique_ptr<mjData, void (*)(mjData*)> rest_;
   std::optional<sim::RealRobotSpec> real_robot_;
