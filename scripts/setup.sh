@@ -21,6 +21,8 @@ demo_packages=(
   libglfw3-dev libpng-dev
   # teleop bridge, the bus in Foxglove/Lichtblick (docs/tools.md): WebSocket server on standalone asio, JSON
   libwebsocketpp-dev libasio-dev nlohmann-json3-dev
+  # Linux input devices beside the operator's (leader.button_input: an e-stop button; docs/stop_chain.md)
+  libevdev-dev
 )
 # the test suite and the benchmarks on top
 test_packages=(

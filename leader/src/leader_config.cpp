@@ -108,6 +108,7 @@ LeaderConfig parse_leader_config(const ConfigNode& root, const DeviceRegistry& d
   }
   parse_feedback(s, c);
   c.stop_buttons = parse_stop_buttons(s);
+  c.button_input = parse_button_input(s);
   const auto teleoperation = runtime::parse_teleoperation_config(root);
   if (!teleoperation) throw root.error("teleoperation", "the leader needs a teleoperation section (architecture)");
   c.teleoperation = *teleoperation;

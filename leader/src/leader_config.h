@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "button_input.h"
 #include "teleop/common/config.h"
 #include "teleop/common/joint_model.h"
 #include "feedback_renderer.h"
@@ -72,6 +73,9 @@ struct LeaderConfig {
   std::optional<HandPlan> hand;
   /// `leader.buttons`: the device's emergency stop and enable buttons.
   StopButtons stop_buttons;
+  /// Buttons of a Linux input device beside the operator's (`leader.button_input`: an e-stop
+  /// button, a pedal), merged into the device's; absent: none.
+  std::optional<ButtonInputConfig> button_input;
 };
 
 /// The recorded operator motion whose CSV file is `section.key` (joints and column prefix from

@@ -11,6 +11,18 @@
 #include "teleop/transport/joint_fields.h"
 
 namespace teleop::leader {
+namespace {
+
+// while leader.button_input is lost, the emergency stop reads pressed when one of its keys is it
+uint32_t lost_stop_word(const LeaderConfig& config) {
+  const int stop = config.stop_buttons.emergency_stop;
+  for (const auto& key : config.button_input->keys) {
+    if (key.second == stop) return 1u << stop;
+  }
+  return 0;
+}
+
+}  // namespace
 
 LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context)
     : config_(config),
@@ -30,6 +42,7 @@ LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context
   if (device_impl_->joints() != n) {
     throw std::runtime_error(std::string("leader: the ") + device_impl_->name() + " device has another joint count than leader.joints");
   }
+  if (config.button_input) button_input_ = std::make_unique<ButtonInput>(*config.button_input, lost_stop_word(config));
   if (!config.arm_model.empty()) {
     device_kinematics_ = std::make_unique<ArmKinematics>(config.arm_model, config.ee_site);
     command_kinematics_ = std::make_unique<ArmKinematics>(config.arm_model, config.ee_site);
@@ -92,9 +105,13 @@ void LeaderNode::move_device(double t_s) {
   motion_.sample(t_s, intent_.q_rad, intent_.dq_radps);
   motion_.intended_torque(t_s, intent_.tau_nm);
   device_impl_->set_operator_intent(intent_);
+  // the buttons held in this cycle, whatever a device that has none leaves in the word
+  device_.buttons = 0;
   if (!device_impl_->read(device_)) ++device_faults_;
-  // the simulated operator's presses (leader.button_presses) on top of what the device reports
+  // the simulated operator's presses (leader.button_presses) and the input device's buttons on
+  // top of what the device reports
   device_.buttons |= motion_.pressed_buttons(t_s);
+  if (button_input_) device_.buttons |= button_input_->word();
 }
 
 void LeaderNode::send_stop_requests(int64_t now_ns) {
@@ -206,6 +223,7 @@ void LeaderNode::fill_report(runtime::NodeReport& report) const {
   report.counters.emplace_back("in_command", authority_->in_command() ? 1.0 : 0.0);
   report.counters.emplace_back("device_faults", static_cast<double>(device_faults_));
   report.counters.emplace_back("emergency_stops_sent", static_cast<double>(stops_sent_));
+  if (button_input_) report.counters.emplace_back("button_input_losses", static_cast<double>(button_input_->losses()));
   report.counters.emplace_back("enables_sent", static_cast<double>(enables_sent_));
   report.counters.emplace_back("rejected_feedback", static_cast<double>(rejected_feedback_));
   report.counters.emplace_back("feedback_peak_nm", renderer_.peak_nm());

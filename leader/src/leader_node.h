@@ -19,6 +19,7 @@
 #include "cartesian_mapping.h"
 #include "clutch.h"
 #include "feedback_renderer.h"
+#include "button_input.h"
 #include "leader_config.h"
 #include "operator_motion.h"
 #include "teleop/leader/leader_device.h"
@@ -78,6 +79,7 @@ class LeaderNode final : public runtime::NodeLogic {
   std::unique_ptr<LeaderArchitecture> architecture_;  // teleoperation.architecture's leader part
   std::optional<runtime::CommandAuthority> authority_;
   std::unique_ptr<LeaderDevice> device_impl_;  // the one leader.device names
+  std::unique_ptr<ButtonInput> button_input_;  // leader.button_input's device, when there is one
   std::unique_ptr<ArmKinematics> device_kinematics_;
   std::unique_ptr<ArmKinematics> command_kinematics_;
   OperatorMotion motion_;

@@ -41,6 +41,7 @@
 #include "teleop/transport/subscription.h"
 #include "teleop/transport/topics.h"
 #include "vcan_support.h"
+#include "vm_bus.h"
 
 namespace teleop::hand {
 namespace {
@@ -118,14 +119,7 @@ double distance(const std::array<double, 3>& a, const std::array<double, 3>& b) 
 }
 
 transport::ParticipantConfig operator_participant(int domain) {
-  transport::ParticipantConfig c;
-  c.domain_id = domain;
-  c.name = "grasp_operator";
-  c.udpv4 = true;
-  c.shm = false;
-  c.interface_whitelist = {"127.0.0.1"};
-  c.initial_peers = {"127.0.0.1"};
-  c.discovery = transport::DiscoveryMode::kPeers;  // no multicast on the VM's loopback
+  transport::ParticipantConfig c = test::vm_participant(domain, "grasp_operator");
   // the node's QoS (config/nodes/hand_mujoco.yaml): a reader asking for a shorter deadline than
   // the node's writers offer would not match them
   c.liveliness_lease_ns = 250'000'000;

@@ -5,7 +5,7 @@
 # COMMAND directly with the --bin folders on PATH, TELEOP_VCAN_IF (the first) and TELEOP_VCAN_IFS
 # (all four) set, deletes the interfaces.
 # Otherwise: boots Debian's kernel in qemu (TCG is fine) from an initramfs holding busybox, the
-# CAN modules, iproute2's ip, candump/cansend, the --bin files and every library ldd lists;
+# CAN and input (evdev, uinput) modules, iproute2's ip, candump/cansend, the --bin files and every library ldd lists;
 # inside, loads can, can-raw, can-dev, vcan, creates vcan0..vcan3, runs COMMAND (the --data folders in
 # /opt/teleop/share/teleop/, where the binaries in /opt/teleop/bin look for teleop's data), prints
 # "TELEOP_VCAN_RESULT PASS|FAIL rc=N" on the serial console and powers off. This script exits
@@ -87,8 +87,9 @@ if [ -z "$deb" ]; then
 fi
 # keep only what the VM needs (the whole package extracts to ~400 MB)
 kdir="$cache/kernel-$(basename "$deb" .deb)"
-kmods=(net/can/can.ko net/can/can-raw.ko drivers/net/can/dev/can-dev.ko drivers/net/can/vcan.ko)
-if [ ! -f "$kdir/.done" ] || [ ! -f "$kdir/vmlinuz" ]; then
+kmods=(net/can/can.ko net/can/can-raw.ko drivers/net/can/dev/can-dev.ko drivers/net/can/vcan.ko
+  drivers/input/evdev.ko drivers/input/misc/uinput.ko)
+if [ ! -f "$kdir/.done" ] || [ ! -f "$kdir/vmlinuz" ] || [ "$(cat "$kdir/.done")" != "${kmods[*]}" ]; then
   rm -rf "$kdir" "$kdir.x"; mkdir -p "$kdir/modules" "$kdir.x"
   dpkg-deb -x "$deb" "$kdir.x" || die "cannot extract $deb"
   cp "$(ls "$kdir.x"/boot/vmlinuz-* | head -1)" "$kdir/vmlinuz" || die "no vmlinuz in $deb"
@@ -98,10 +99,10 @@ if [ ! -f "$kdir/.done" ] || [ ! -f "$kdir/vmlinuz" ]; then
     f=$(ls "$moddir/kernel/$m"* 2>/dev/null | head -1 || true)
     [ -n "$f" ] || { rm -rf "$kdir" "$kdir.x"; die "module $m missing in $deb"; }
     n=$((n + 1))
-    cp "$f" "$kdir/modules/$n-$(basename "$f")"  # numbered: insmod order can, can-raw, can-dev, vcan
+    cp "$f" "$kdir/modules/$n-$(basename "$f")"  # numbered: insmod order can, can-raw, can-dev, vcan, evdev, uinput
   done
   rm -rf "$kdir.x"
-  touch "$kdir/.done"
+  echo "${kmods[*]}" > "$kdir/.done"  # the modules it holds: a changed list extracts again
 fi
 vmlinuz="$kdir/vmlinuz"
 
