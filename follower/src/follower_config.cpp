@@ -140,6 +140,7 @@ FollowerConfig parse_follower_config(const ConfigNode& root, const robot::Hardwa
   c.max_torque_rate_nm_per_s = s.get_bound_or_off("max_torque_rate_nm_per_s", Range{1, 1e6}, c.max_torque_rate_nm_per_s);
   c.command_timeout_s = s.get_double("command_timeout_ms", Range{1, 60'000}, c.command_timeout_s * 1e3) * 1e-3;
   c.rejoin_speed_radps = s.get_double("rejoin_speed_radps", Range{0.01, 10}, c.rejoin_speed_radps);
+  c.enable_after_hold = s.get_choice("after_hold", {"resume", "enable"}, "resume") == "enable";
   c.hold_stiffness_nm_per_rad = s.get_double("hold_stiffness_nm_per_rad", Range{0, 1e5}, c.hold_stiffness_nm_per_rad);
   c.hold_damping_nms_per_rad = s.get_double("hold_damping_nms_per_rad", Range{0, 1e4}, c.hold_damping_nms_per_rad);
   c.control = read_control(s.child("control"), c.joints, s.has("arms"));

@@ -148,6 +148,13 @@ void FollowerNode::emergency_stop(bool engaged) {
   architecture_->restart();
 }
 
+bool FollowerNode::enable_requested() {
+  if (!awaiting_enable_) return false;
+  // the watchdog joins the commands from the held pose as soon as they flow
+  awaiting_enable_ = false;
+  return true;
+}
+
 void FollowerNode::bring_to_rest() {
   constexpr double kAtRestRadps = 0.02;
   hold_current_pose(active_, config_.hold_stiffness_nm_per_rad, config_.hold_damping_nms_per_rad);
@@ -191,8 +198,9 @@ void FollowerNode::run_watchdog(int64_t now_ns, bool stalled, bool robot_current
   // our own loop missed more than the timeout: what was drained now is a backlog, and the newest
   // command of it must not act as a step; hold for this cycle and rejoin from the held pose
   if (robot_current && !stalled && source_ != Source::kNone && silence_s < config_.command_timeout_s && !lost) {
-    // a latched reflex holds until reset, however well the commands flow
-    if (reflex_.latched()) return;
+    // a latched reflex holds until reset, a hold that waits for an enable until one comes, however
+    // well the commands flow
+    if (reflex_.latched() || awaiting_enable_) return;
     // commands (re)start after a hold: the robot joins them from the pose it held
     if (state_ != msg::STATE_RUNNING) rejoin_.start(held_q_rad_);
     state_ = msg::STATE_RUNNING;
@@ -212,6 +220,10 @@ void FollowerNode::run_watchdog(int64_t now_ns, bool stalled, bool robot_current
       if (!stalled) watchdog_latency_max_s_ = std::max(watchdog_latency_max_s_, silence_s);
     }
     hold_current_pose(active_, config_.hold_stiffness_nm_per_rad, config_.hold_damping_nms_per_rad);
+    if (config_.enable_after_hold) {
+      awaiting_enable_ = true;
+      ++holds_awaiting_enable_;
+    }
     // the channel's session ended with the command source: both ends start their bookkeeping afresh
     architecture_->restart();
   }
@@ -319,8 +331,9 @@ void FollowerNode::cycle(const CycleTick& tick) {
   // the watchdog counts control cycles (their deadlines): a cycle released late neither
   // shortens nor stretches the timeout
   const bool stalled = stall_watch_.stalled(tick);
-  // stopped, no command is taken: the newest waits in its reader for the enable
-  if (!emergency_stopped_) take_commands(tick.deadline_ns);
+  // stopped, or holding until an enable (after_hold: enable), no command is taken: the newest
+  // waits in its reader for the enable
+  if (!emergency_stopped_ && !awaiting_enable_) take_commands(tick.deadline_ns);
   take_reset_requests();
   run_watchdog(tick.deadline_ns, stalled, robot_current);
   if (emergency_stopped_ && coming_to_rest_ && robot_current) bring_to_rest();
@@ -358,6 +371,7 @@ void FollowerNode::fill_report(runtime::NodeReport& report) const {
   auto counter = [&](const char* name, double value) { report.counters.emplace_back(name, value); };
   counter("watchdog_trips", static_cast<double>(watchdog_trips_));
   counter("stall_holds", static_cast<double>(stall_holds_));
+  counter("holds_awaiting_enable", static_cast<double>(holds_awaiting_enable_));
   counter("robot_state_holds", static_cast<double>(robot_state_holds_));
   counter("robot_stale_cycles", static_cast<double>(robot_stale_cycles_));
   hardware_->report_counters(report.counters);

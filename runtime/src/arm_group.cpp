@@ -38,6 +38,12 @@ void ArmGroup::cycle(const CycleTick& tick) {
   if (after_arms_) after_arms_();
 }
 
+bool ArmGroup::enable_requested() {
+  bool ended = false;
+  for (Arm& a : arms_) ended = a.logic->enable_requested() || ended;  // every arm, not the first alone
+  return ended;
+}
+
 void ArmGroup::emergency_stop(bool engaged) {
   for (Arm& a : arms_) a.logic->emergency_stop(engaged);
 }

@@ -20,11 +20,11 @@ bool EmergencyStopGate::addressed_to_us(const msg::EmergencyStop& request) const
   return target.empty() || target == name_;
 }
 
-void EmergencyStopGate::log_change(const msg::EmergencyStop& request, int64_t now_ns) {
+void EmergencyStopGate::log_change(const msg::EmergencyStop& request, int64_t now_ns, bool hold) {
   NodeEvent e;
   e.kind = NodeEvent::Kind::kEmergencyStop;
   e.mono_ns = now_ns;
-  e.code = engaged_ ? 1 : 0;
+  e.code = engaged_ ? 1 : hold ? 2 : 0;
   e.who.assign(request.header().source().c_str());
   e.topic.assign(request.origin().c_str());
   events_->push(e);
@@ -38,14 +38,21 @@ void EmergencyStopGate::cycle(const CycleTick& tick) {
     if (!addressed_to_us(request_)) continue;
     // the first cycle after the arrival acts on it: its start is the reaction's end
     reaction_max_ns_ = std::max(reaction_max_ns_, system_now_ns() - reception_ns);
-    if (request_.engaged() == engaged_) continue;  // a repeat changes nothing
+    if (request_.engaged() == engaged_) {
+      // a repeat changes nothing; an enable while not stopped may end a hold that waits for one
+      if (!engaged_ && !mismatched_ && logic_->enable_requested()) {
+        ++hold_enables_;
+        log_change(request_, tick.now_ns, /*hold=*/true);
+      }
+      continue;
+    }
     // nothing resumes a node while a peer of another version talks on the domain
     if (!request_.engaged() && mismatched_) {
       ++enables_refused_;
       continue;
     }
     emergency_stop(request_.engaged());
-    log_change(request_, tick.now_ns);
+    log_change(request_, tick.now_ns, /*hold=*/false);
   }
   logic_->cycle(tick);
 }
@@ -91,6 +98,7 @@ void EmergencyStopGate::fill_report(NodeReport& report) const {
   logic_->fill_report(report);
   report.counters.emplace_back("emergency_stops", static_cast<double>(stops_));
   report.counters.emplace_back("emergency_stop_enables", static_cast<double>(enables_));
+  report.counters.emplace_back("hold_enables", static_cast<double>(hold_enables_));
   report.counters.emplace_back("emergency_stop_engaged", engaged_ ? 1.0 : 0.0);
   report.counters.emplace_back("emergency_stop_reaction_max_ms", static_cast<double>(reaction_max_ns_) * 1e-6);
   report.counters.emplace_back("version_mismatch_stops", static_cast<double>(version_stops_));

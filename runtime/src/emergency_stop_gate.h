@@ -42,7 +42,8 @@ class EmergencyStopGate final : public NodeLogic {
 
  private:
   bool addressed_to_us(const msg::EmergencyStop& request) const;
-  void log_change(const msg::EmergencyStop& request, int64_t now_ns);
+  /// `hold`: an enable that ended the logic's hold (no emergency stop was engaged).
+  void log_change(const msg::EmergencyStop& request, int64_t now_ns, bool hold);
   /// Stops the node when a peer of another version appears, logs it when it goes.
   void watch_versions(int64_t now_ns);
 
@@ -58,6 +59,7 @@ class EmergencyStopGate final : public NodeLogic {
   uint64_t enables_refused_ = 0;
   uint64_t stops_ = 0;
   uint64_t enables_ = 0;
+  uint64_t hold_enables_ = 0;  // enables that ended a hold waiting for one
   // from a request's arrival at the reader to the start of the cycle that acted on it [ns]
   int64_t reaction_max_ns_ = 0;
   mutable size_t logic_columns_ = 0;  // set once by trace_columns()

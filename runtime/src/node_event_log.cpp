@@ -122,9 +122,12 @@ std::string format_event(const NodeEvent& e, const std::string& node) {
           "latencies that mean something (docs/clocks.md)",
           node, e.who.view(), std::abs(e.value) * 1e3, e.value < 0 ? "ahead of" : "behind", e.topic.view(), e.value * 1e3);
     case NodeEvent::Kind::kEmergencyStop:
-      return node + (e.code != 0 ? ": EMERGENCY STOP from '" : ": enabled after the emergency stop by '") +
+      return node +
+             (e.code == 1   ? ": EMERGENCY STOP from '"
+              : e.code == 2 ? ": enabled after its hold by '"
+                            : ": enabled after the emergency stop by '") +
              std::string(e.who.view()) + "' (" + std::string(e.topic.view()) + ")" +
-             (e.code != 0 ? "; only `teleop enable` resumes" : "");
+             (e.code == 1 ? "; only `teleop enable` resumes" : "");
   }
   return node + ": unknown event";
 }
@@ -142,7 +145,7 @@ spdlog::level::level_enum level_of(const NodeEvent& e) {
       return static_cast<CommandRefusal>(e.code) == CommandRefusal::kNone ? spdlog::level::info : spdlog::level::warn;
     case NodeEvent::Kind::kRefused:
     case NodeEvent::Kind::kStall: return spdlog::level::warn;
-    case NodeEvent::Kind::kEmergencyStop: return e.code != 0 ? spdlog::level::err : spdlog::level::warn;
+    case NodeEvent::Kind::kEmergencyStop: return e.code == 1 ? spdlog::level::err : spdlog::level::warn;
     case NodeEvent::Kind::kClockOffset: return spdlog::level::warn;
     case NodeEvent::Kind::kVersionMismatch: return e.code != 0 ? spdlog::level::err : spdlog::level::warn;
   }

@@ -24,14 +24,19 @@ namespace {
 using namespace std::chrono_literals;
 
 // the shipped follower with the arm behind seven emulated CiA 402 drives on four buses: gear 100
-// at 90 %, 16-bit encoders, the Panda's largest torques, rated 100 / 15 mN m at the motor
+// at 90 %, 16-bit encoders, the Panda's largest torques, rated 100 / 15 mN m at the motor, and its
+// joint ranges (a drive knows no model: its range is configured, as on a real arm)
 std::string can_follower_config(const std::string& dir) {
   std::string drives = "  hardware: canopen_emulated\n  canopen:\n    drives:\n";
   const int max_torque_nm[7] = {87, 87, 87, 87, 12, 12, 12};
+  const char* range[7] = {"-2.8973, q_max_rad: 2.8973", "-1.7628, q_max_rad: 1.7628", "-2.8973, q_max_rad: 2.8973",
+                          "-3.0718, q_max_rad: -0.0698", "-2.8973, q_max_rad: 2.8973", "-0.0175, q_max_rad: 3.7525",
+                          "-2.8973, q_max_rad: 2.8973"};
   for (int k = 0; k < 7; ++k) {
     drives += "      - {bus: can" + std::to_string(k / 2) + ", node: " + std::to_string(k + 1) +
               ", gear_ratio: 100, gear_efficiency: 0.9, encoder_ticks_per_rev: 65536, rated_torque_mnm: " +
-              (max_torque_nm[k] == 87 ? "100" : "15") + ", max_torque_nm: " + std::to_string(max_torque_nm[k]) + "}\n";
+              (max_torque_nm[k] == 87 ? "100" : "15") + ", max_torque_nm: " + std::to_string(max_torque_nm[k]) +
+              ", q_min_rad: " + range[k] + "}\n";
   }
   return config_copy(dir, "follower.yaml", {{"  hardware: mujoco\n", drives}});
 }

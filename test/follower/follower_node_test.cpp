@@ -164,6 +164,32 @@ TEST_F(FollowerNodeTest, AnEmergencyStopBringsTheArmToRestAndOnlyAnEnableResumes
   for (size_t j = 0; j < kJoints; ++j) EXPECT_NEAR(node->arm().q_rad[j], kHome[j], 0.01) << "joint " << j;
 }
 
+// follower.after_hold: enable: the commands return after a lost link, the arm stays held until a
+// deliberate enable, then joins them from the held pose
+TEST_F(FollowerNodeTest, WithAfterHoldEnableOnlyAnEnableEndsAHold) {
+  config.enable_after_hold = true;
+  node.reset();
+  start();
+  for (int i = 0; i < 500; ++i) step(0.05);
+  ASSERT_EQ(node->state(), msg::STATE_RUNNING);
+  EXPECT_FALSE(node->enable_requested()) << "nothing to end while running";
+  for (int i = 0; i < 300; ++i) step(0.0, /*send=*/false);
+  ASSERT_EQ(node->state(), msg::STATE_SAFE_HOLD);
+  const robot::ArmState held = node->arm();
+  for (int i = 0; i < 500; ++i) step(-0.1);
+  EXPECT_EQ(node->state(), msg::STATE_SAFE_HOLD) << "the commands are back, the hold waits for an enable";
+  for (size_t j = 0; j < kJoints; ++j) EXPECT_NEAR(node->arm().q_rad[j], held.q_rad[j], 0.01) << "joint " << j;
+  EXPECT_TRUE(node->enable_requested());
+  EXPECT_FALSE(node->enable_requested()) << "one enable ends one hold";
+  for (int i = 0; i < 1500; ++i) step(-0.1);
+  EXPECT_EQ(node->state(), msg::STATE_RUNNING);
+  for (size_t j = 0; j < kJoints; ++j) {
+    EXPECT_NEAR(node->arm().q_rad[j], kHome[j] + (j == 1 ? 0.0 : -0.1), 0.01) << "joint " << j << ": joined, then tracked";
+  }
+  EXPECT_EQ(counter("holds_awaiting_enable"), 1.0);
+  EXPECT_EQ(counter("reflex_trips"), 0.0);
+}
+
 // the loop stopped for longer than the command timeout (a stopped or starved process): the
 // backlog's newest command is far from where the arm is, and is joined, not stepped to
 TEST_F(FollowerNodeTest, AStallOfItsOwnLoopIsAHoldAndTheNewestCommandIsJoinedNotSteppedTo) {

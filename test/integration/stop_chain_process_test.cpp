@@ -145,6 +145,40 @@ TEST(StopChain, TheDevicesEmergencyStopHoldsTheFollowerThroughANewLeaderUntilAnE
   EXPECT_EQ(rendered, 0.0);
 }
 
+// follower.after_hold: enable: a leader killed mid-motion leaves the follower holding, and a new
+// leader's commands do not move it until `teleop enable follower`
+TEST(StopChain, WithAfterHoldEnableANewLeaderWaitsForAnEnable) {
+  Site site;
+  transport::Participant observer(bus_participant(site.domain, "observer"));
+  transport::Subscription<msg::JointCommand> commands(observer, transport::topics::kLeaderCommand);
+  std::vector<std::string> follower_argv = site.args("follower", source("config/nodes/follower.yaml"), "follower");
+  follower_argv.insert(follower_argv.end(), {"--set", "follower.after_hold=enable"});
+  RunningProcess follower(follower_argv);
+  ASSERT_TRUE(follower.wait_for_output("starting", 20s)) << follower.output();
+  {
+    RunningProcess leader(site.args("leader", site.leader_config, "leader_a"));
+    ASSERT_TRUE(follower.wait_for_output("starting -> running", 60s)) << follower.output() << leader.output();
+    leader.run_for(1s);
+    leader.stop(SIGKILL, 10s);
+  }
+  ASSERT_TRUE(follower.wait_for_output("running -> safe_hold", 10s)) << follower.output();
+  RunningProcess leader(site.args("leader", site.leader_config, "leader_b"));
+  ASSERT_TRUE(wait_for_session(commands, 2, 30s)) << leader.output();
+  follower.run_for(1500ms);
+  EXPECT_EQ(follower.output().find("safe_hold -> running"), std::string::npos) << "the hold waits for an enable";
+  const ProcessResult enable = run_process(
+      {bin("teleop"), "enable", "follower", "--domain", std::to_string(site.domain), "--timeout", "20"}, 60s);
+  ASSERT_EQ(enable.exit_status, 0) << enable.output;
+  ASSERT_TRUE(follower.wait_for_output("enabled after its hold by 'teleop_enable'", 20s)) << follower.output();
+  ASSERT_TRUE(follower.wait_for_output("safe_hold -> running", 20s)) << follower.output();
+  ASSERT_EQ(leader.stop(SIGTERM, 10s), 0) << leader.output();
+  ASSERT_EQ(follower.stop(SIGTERM, 10s), 0) << follower.output();
+  const auto report = runtime::read_report(site.report_path("follower"));
+  EXPECT_EQ(counter(report, "holds_awaiting_enable"), 2.0) << "the killed leader's, and the second's at the end";
+  EXPECT_EQ(counter(report, "hold_enables"), 1.0);
+  EXPECT_EQ(counter(report, "emergency_stops"), 0.0);
+}
+
 TEST(StopChain, AnEstopNobodyHearsFailsWithAMessage) {
   const ProcessResult r = run_process({bin("teleop"), "estop", "--domain", std::to_string(unique_domain()), "--timeout", "0.5"}, 30s);
   EXPECT_EQ(r.exit_status, 1) << r.output;

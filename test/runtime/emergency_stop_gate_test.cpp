@@ -36,12 +36,20 @@ class RecordingLogic final : public NodeLogic {
     stopped = engaged;
     ++told;
   }
+  bool enable_requested() override {
+    ++enable_requests;
+    const bool ended = holding;
+    holding = false;
+    return ended;
+  }
   void fill_report(NodeReport&) const override {}
   void trace_columns(std::vector<std::string>& columns) const override { columns.emplace_back("x"); }
   void trace_row(double* row) const override { row[0] = 7.0; }
 
   int cycles = 0;
   int told = 0;
+  int enable_requests = 0;
+  bool holding = false;  // a hold that waits for an enable
   bool stopped = false;
   bool stopped_at_work = false;
   std::vector<uint32_t> own_faults;
@@ -124,6 +132,32 @@ TEST(EmergencyStopGate, OnlyAnEnableEndsIt) {
   EXPECT_EQ(counter("emergency_stop_enables"), 1.0);
   EXPECT_EQ(counter("emergency_stop_engaged"), 0.0);
   EXPECT_GE(counter("emergency_stop_reaction_max_ms"), 0.0);
+}
+
+// no emergency stop engaged: an enable goes to the logic, which may end a hold waiting for one
+TEST(EmergencyStopGate, AnEnableWithoutAStopIsTheLogicsToEndAHoldWith) {
+  Bus bus;
+  bus.logic->holding = true;
+  bus.send(false, "follower");
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (bus.logic->enable_requests == 0 && std::chrono::steady_clock::now() < end) {
+    bus.gate->cycle(bus.tick);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  EXPECT_EQ(bus.logic->enable_requests, 1);
+  EXPECT_FALSE(bus.logic->holding);
+  EXPECT_EQ(bus.logic->told, 0) << "no emergency stop to end";
+  bus.send(false, "");  // another: nothing left to end
+  for (int i = 0; i < 50 && bus.logic->enable_requests < 2; ++i) {
+    bus.gate->cycle(bus.tick);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  NodeReport report;
+  bus.gate->fill_report(report);
+  const auto it = std::find_if(report.counters.begin(), report.counters.end(), [](const auto& c) { return c.first == "hold_enables"; });
+  ASSERT_NE(it, report.counters.end());
+  EXPECT_EQ(it->second, 1.0);
+  EXPECT_EQ(bus.gate->state(), msg::STATE_RUNNING);
 }
 
 TEST(EmergencyStopGate, AStopForAnotherNodeIsNotOurs) {

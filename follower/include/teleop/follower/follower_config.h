@@ -49,6 +49,10 @@ struct FollowerConfig {
   /// Joint speed at which commands are joined after a hold (joint_rejoin.h): well below the
   /// speed reflex, so that a leader that starts far away moves the arm there calmly.
   double rejoin_speed_radps = 0.5;
+  /// A hold after the commands stopped (a lost link, a dead leader, a stall) ends when they return
+  /// (false, `after_hold: resume`), or only with a deliberate enable (`after_hold: enable`:
+  /// `teleop enable`, the leader's enable button), as after an emergency stop.
+  bool enable_after_hold = false;
   /// Joint impedance used to hold the pose in the safe state (gravity compensated).
   double hold_stiffness_nm_per_rad = 200.0;
   double hold_damping_nms_per_rad = 20.0;

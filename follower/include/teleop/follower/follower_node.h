@@ -42,6 +42,7 @@ class FollowerNode final : public runtime::NodeLogic {
   /// to where the stop came) and holds it where it came to rest, following no command, until
   /// disengaged (an enable); then commands are joined from the held pose.
   void emergency_stop(bool engaged) override;
+  bool enable_requested() override;
   void active_faults(std::vector<uint32_t>& faults) const override;
   void fill_status(msg::NodeStatus& status) const override;
   void fill_report(runtime::NodeReport& report) const override;
@@ -103,6 +104,7 @@ class FollowerNode final : public runtime::NodeLogic {
   const ValidCommand* controlled_ = &active_;
   SafetyReflex reflex_;
   bool emergency_stopped_ = false;
+  bool awaiting_enable_ = false;  // a hold with after_hold: enable, until an enable
   bool coming_to_rest_ = false;
   SpeedBrake brake_;
   ValidCommand reflex_hold_{};
@@ -123,6 +125,7 @@ class FollowerNode final : public runtime::NodeLogic {
   // counters and metrics for the report
   uint64_t watchdog_trips_ = 0;
   uint64_t stall_holds_ = 0;
+  uint64_t holds_awaiting_enable_ = 0;
   // holds because the robot's own state was stale, and the cycles it held through hold()
   uint64_t robot_state_holds_ = 0;
   uint64_t robot_stale_cycles_ = 0;

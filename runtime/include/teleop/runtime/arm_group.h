@@ -32,6 +32,7 @@ class ArmGroup final : public NodeLogic {
   void active_faults(std::vector<uint32_t>& faults) const override;
   /// Every arm stops (and is enabled) together.
   void emergency_stop(bool engaged) override;
+  bool enable_requested() override;
   /// Every arm's topics; its counters as "<arm>.<counter>" (unnamed members: as they are).
   void fill_report(NodeReport& report) const override;
   /// Every arm's columns as "<arm>_<column>" (unnamed members: as they are).

@@ -32,6 +32,10 @@ class NodeLogic {
   /// command, the leader freezes its command and renders no force); meanwhile the runner reports the
   /// node in STATE_FAULT with FAULT_EMERGENCY_STOP. Real-time safe.
   virtual void emergency_stop(bool engaged) { (void)engaged; }
+  /// An enable arrived while no emergency stop is engaged: a node whose holds wait for a deliberate
+  /// enable (the follower with `after_hold: enable`) leaves the one it is in. True when it ended
+  /// a hold. Real-time safe.
+  virtual bool enable_requested() { return false; }
   /// Adds the node's topics and counters to the final report. Called once after the loop.
   virtual void fill_report(NodeReport& report) const = 0;
 
