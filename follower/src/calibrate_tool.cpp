@@ -90,7 +90,10 @@ int run_calibration(const CalibrateOptions& options, const robot::HardwareRegist
     const sim::MujocoModel model = sim::MujocoModel::load(setup.follower.control.model_path);
     control::ArmDynamics dynamics(model.model(), setup.follower.control.ee_site);
     const control::PayloadFit fit = control::identify_payload(dynamics, calibration.samples());
-    std::ofstream(setup.out_path) << calibration_text(fit, robot->name(), plan.poses.size());
+    std::ofstream out(setup.out_path);
+    out << calibration_text(fit, robot->name(), plan.poses.size());
+    out.close();
+    if (!out) throw std::runtime_error("cannot write " + setup.out_path);
     const control::Payload& p = fit.calibration.payload;
     std::printf("teleop_calibrate: payload %.4f kg at [%.4f, %.4f, %.4f] m (residual %.3f Nm rms, conditioning %.3f); wrote %s\n",
                 p.mass_kg, p.com_m.x(), p.com_m.y(), p.com_m.z(), fit.residual_rms_nm, fit.conditioning,
