@@ -57,7 +57,16 @@ int run_ip(const std::vector<std::string>& args, std::string& out) {
 
 CanLink read_can_link(const std::string& name) {
   std::string out;
-  if (run_ip({"-details", "-json", "link", "show", "dev", name}, out) == 0) return parse_ip_link(name, out);
+  int status = 0;
+  try {
+    status = run_ip({"-details", "-json", "link", "show", "dev", name}, out);
+  } catch (const std::runtime_error& e) {  // no ip on PATH, or it could not be started
+    CanLink link;
+    link.name = name;
+    link.error = std::string("ip (iproute2) could not be run: ") + e.what();
+    return link;
+  }
+  if (status == 0) return parse_ip_link(name, out);
   CanLink link;
   link.name = name;
   // ip's own words for an interface that is not there; anything else is ip failing
