@@ -9,63 +9,50 @@
 #include <cstdint>
 #include <optional>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
+#include "evdev_reader.h"
 #include "teleop/common/config.h"
-
-struct libevdev;
 
 namespace teleop::leader {
 
 struct ButtonInputConfig {
-  /// A device node (/dev/input/by-id/..., /dev/input/event3) or the name the device reports
-  /// ("Pedal Co. USB Foot Switch"), found among /dev/input/event* at start and after a loss.
+  /// A device node (/dev/input/by-id/..., /dev/input/event3), a USB vendor:product id or the
+  /// name the device reports ("Pedal Co. USB Foot Switch"), found among /dev/input/event* at
+  /// start and after a loss (evdev_reader.h).
   std::string device;
   /// Each evdev key code read, and the leader button it is.
   std::vector<std::pair<unsigned, int>> keys;
 };
+
+/// Each key of `keys` ({KEY_PAUSE: 0, BTN_0: 1}: key names as the kernel spells them) and the
+/// leader button it is. Throws ConfigError naming an unknown key name or a button out of range.
+std::vector<std::pair<unsigned, int>> read_key_buttons(const ConfigNode& keys);
 
 /// Reads `leader.button_input: {device: ..., keys: {KEY_PAUSE: 0, BTN_0: 1}}` (key names as the
 /// kernel spells them); nullopt without it. Throws ConfigError naming an unknown key name or a
 /// button out of range.
 std::optional<ButtonInputConfig> parse_button_input(const ConfigNode& leader_section);
 
-class ButtonInput {
+class ButtonInput final : public EvdevReader {
  public:
   /// Opens the device and starts reading it. Throws std::runtime_error naming the device when it
   /// is not there or lacks a key the config names. `lost_word`: what word() reads while the
   /// device is gone. Setup time.
   ButtonInput(ButtonInputConfig config, uint32_t lost_word);
-  ~ButtonInput();
-  ButtonInput(const ButtonInput&) = delete;
-  ButtonInput& operator=(const ButtonInput&) = delete;
+  ~ButtonInput() override { stop(); }
 
   /// The leader buttons held now. Real-time safe (an atomic load).
   uint32_t word() const { return word_.load(std::memory_order_acquire); }
-  bool connected() const { return connected_.load(std::memory_order_acquire); }
-  /// Times the device went away since start.
-  uint64_t losses() const { return losses_.load(std::memory_order_relaxed); }
-  /// The device it reads (its node and the name it reports).
-  const std::string& description() const { return description_; }
 
  private:
-  bool open_device();
-  void close_device();
-  void run();
-  void drain();
+  void on_drained(const libevdev& device) override;
+  void on_lost() override { word_.store(lost_word_, std::memory_order_release); }
 
   ButtonInputConfig config_;
   uint32_t lost_word_;
-  int fd_ = -1;
-  libevdev* device_ = nullptr;
-  std::string description_;
   std::atomic<uint32_t> word_{0};
-  std::atomic<bool> connected_{false};
-  std::atomic<uint64_t> losses_{0};
-  std::atomic<bool> stop_{false};
-  std::thread reader_;
 };
 
 }  // namespace teleop::leader

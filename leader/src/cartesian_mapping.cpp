@@ -1,5 +1,7 @@
 #include "cartesian_mapping.h"
 
+#include <algorithm>
+
 namespace teleop::leader {
 
 void CartesianMapping::start(const Eigen::Vector3d& x_device, const Eigen::Matrix3d& r_device,
@@ -31,6 +33,23 @@ void CartesianMapping::map(const Eigen::Vector3d& x_device, const Eigen::Matrix3
   r_cmd_ = r_device * r_ref_device_.transpose() * r_ref_cmd_;
   twist_.head<3>() = scale_ * twist_device.head<3>();
   twist_.tail<3>() = twist_device.tail<3>();
+  keep_in_box();
+}
+
+// a component outside the box stops at its wall, and its reference moves with the device: motion
+// back into the box acts at once instead of first undoing what was pushed past the wall
+void CartesianMapping::keep_in_box() {
+  if (!box_) return;
+  bool outside = false;
+  for (int i = 0; i < 3; ++i) {
+    const double bounded = std::clamp(x_cmd_[i], box_->first[i], box_->second[i]);
+    if (bounded == x_cmd_[i]) continue;
+    x_ref_cmd_[i] += bounded - x_cmd_[i];
+    x_cmd_[i] = bounded;
+    twist_[i] = 0.0;
+    outside = true;
+  }
+  if (outside) ++box_saturations_;
 }
 
 }  // namespace teleop::leader

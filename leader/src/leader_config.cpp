@@ -68,6 +68,30 @@ StopButtons parse_stop_buttons(const ConfigNode& s) {
   if (b.enable >= 0 && b.enable == b.emergency_stop) {
     throw buttons->error("enable", "is the emergency stop's button too: an enable must be a deliberate other act");
   }
+  b.dead_man = static_cast<int>(buttons->get_int("dead_man", Range{-1, kMaxButton}, -1));
+  b.clutch = static_cast<int>(buttons->get_int("clutch", Range{-1, kMaxButton}, -1));
+  if (b.clutch >= 0 && b.clutch == b.dead_man) throw buttons->error("clutch", "is the dead-man button too");
+  for (const int stop : {b.emergency_stop, b.enable}) {
+    if (stop >= 0 && (stop == b.dead_man || stop == b.clutch)) {
+      throw buttons->error(stop == b.dead_man ? "dead_man" : "clutch", "is a button of the stop chain too");
+    }
+  }
+  return b;
+}
+
+std::optional<WorkspaceBox> parse_workspace_box(const ConfigNode& s) {
+  const auto box = s.optional_child("workspace_box_m");
+  if (!box) return std::nullopt;
+  WorkspaceBox b;
+  const std::vector<double> min = box->get_double_list("min", Range{-10, 10});
+  const std::vector<double> max = box->get_double_list("max", Range{-10, 10});
+  if (min.size() != 3) throw box->error("min", "needs 3 values (x, y, z in the base frame)");
+  if (max.size() != 3) throw box->error("max", "needs 3 values (x, y, z in the base frame)");
+  for (size_t i = 0; i < 3; ++i) {
+    if (!(min[i] < max[i])) throw box->error("max", "must exceed min in every axis");
+    b.min_m[i] = min[i];
+    b.max_m[i] = max[i];
+  }
   return b;
 }
 
@@ -99,6 +123,7 @@ LeaderConfig parse_leader_config(const ConfigNode& root, const DeviceRegistry& d
   if (s.has("arm_model")) c.arm_model = sim::get_model_path(s, "arm_model");
   c.ee_site = s.get_string("ee_site", c.ee_site);
   c.workspace_scale = s.get_double("workspace_scale", Range{0.01, 100}, c.workspace_scale);
+  c.workspace_box = parse_workspace_box(s);
   if (const auto hand = s.optional_child("hand")) {
     try {
       c.hand = parse_hand_plan(*hand);
@@ -112,6 +137,11 @@ LeaderConfig parse_leader_config(const ConfigNode& root, const DeviceRegistry& d
   const auto teleoperation = runtime::parse_teleoperation_config(root);
   if (!teleoperation) throw root.error("teleoperation", "the leader needs a teleoperation section (architecture)");
   c.teleoperation = *teleoperation;
+  const std::string architecture(c.teleoperation.architecture->name);
+  if (c.device->cartesian() && !runtime::is_cartesian(*c.teleoperation.architecture)) {
+    throw s.error("device", std::string(c.device->device()) + " moves a Cartesian pose, it has no joints: architecture " +
+                                architecture + " commands joint positions; use pfc or pfc_tdpa");
+  }
   if (runtime::is_cartesian(*c.teleoperation.architecture) && c.arm_model.empty() && !per_arm_models) {
     throw s.error("arm_model", std::string("architecture ") + std::string(c.teleoperation.architecture->name) +
                                    " maps the device in Cartesian space: give the arm's model file");

@@ -30,10 +30,20 @@ struct CartesianGains {
   double nullspace_stiffness_nm_per_rad = 10.0;
 };
 
-/// The device's buttons of the stop chain (docs/stop_chain.md), by index; -1: none.
+/// The device's buttons of the stop chain (docs/stop_chain.md) and of motion, by index; -1: none.
 struct StopButtons {
   int emergency_stop = -1;
   int enable = -1;
+  /// Held: the command follows the device; released: it holds (an enabling device). -1: always follows.
+  int dead_man = -1;
+  /// Held: the command holds while the device moves freely (indexing).
+  int clutch = -1;
+};
+
+/// A box in the follower's base frame that the Cartesian command stays in [m]; none: unbounded.
+struct WorkspaceBox {
+  std::array<double, 3> min_m{};
+  std::array<double, 3> max_m{};
 };
 
 /// The highest button index a configuration may name (DeviceState::buttons is 32 bits).
@@ -67,11 +77,13 @@ struct LeaderConfig {
   FeedbackConfig feedback;
   /// Scaling from the device to the follower's command (joint angles or positions).
   double workspace_scale = 1.0;
+  /// `leader.workspace_box_m: {min: [x, y, z], max: [x, y, z]}`: where the Cartesian command may go.
+  std::optional<WorkspaceBox> workspace_box;
   runtime::TeleoperationConfig teleoperation;
   /// `leader.hand` (optional): the simulated operator's hand, a HandCommand plan for the
   /// teleop_hand node (hand_plan.h); without it the leader commands no hand.
   std::optional<HandPlan> hand;
-  /// `leader.buttons`: the device's emergency stop and enable buttons.
+  /// `leader.buttons`: the device's emergency stop, enable, dead-man and clutch buttons.
   StopButtons stop_buttons;
   /// Buttons of a Linux input device beside the operator's (`leader.button_input`: an e-stop
   /// button, a pedal), merged into the device's; absent: none.

@@ -39,12 +39,14 @@ LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context
       renderer_(config.joints, config.feedback, context.node.rate_hz) {
   const size_t n = config.joints;
   device_impl_ = config.device->make({period_s_, n, config.home_rad, config.arm_model});
-  if (device_impl_->joints() != n) {
+  // a Cartesian device has no joints: its pose is mapped as it is (architectures that need
+  // joints refuse it with the configuration)
+  if (!config.device->cartesian() && device_impl_->joints() != n) {
     throw std::runtime_error(std::string("leader: the ") + device_impl_->name() + " device has another joint count than leader.joints");
   }
   if (config.button_input) button_input_ = std::make_unique<ButtonInput>(*config.button_input, lost_stop_word(config));
   if (!config.arm_model.empty()) {
-    device_kinematics_ = std::make_unique<ArmKinematics>(config.arm_model, config.ee_site);
+    if (!config.device->cartesian()) device_kinematics_ = std::make_unique<ArmKinematics>(config.arm_model, config.ee_site);
     command_kinematics_ = std::make_unique<ArmKinematics>(config.arm_model, config.ee_site);
   }
   architecture_ = make_leader_architecture(
@@ -59,14 +61,44 @@ LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context
 
   // the device starts wherever it is; the follower's command starts at home
   device_.q_rad = config.home_rad;
-  move_device(0.0);
+  device_connected_ = move_device(0.0);
   clutch_.start(device_.q_rad, config.home_rad);
-  if (device_kinematics_) {
-    command_kinematics_->update(config.home_rad, dq_cmd_);
-    device_kinematics_->update(device_.q_rad, device_.dq_radps);
-    cartesian_.start(device_kinematics_->position(), device_kinematics_->rotation(), command_kinematics_->position(),
-                     command_kinematics_->rotation());
+  if (command_kinematics_) start_cartesian();
+}
+
+void LeaderNode::start_cartesian() {
+  command_kinematics_->update(config_.home_rad, dq_cmd_);
+  const Eigen::Vector3d& home = command_kinematics_->position();
+  if (const auto& box = config_.workspace_box) {
+    const Eigen::Vector3d min(box->min_m[0], box->min_m[1], box->min_m[2]);
+    const Eigen::Vector3d max(box->max_m[0], box->max_m[1], box->max_m[2]);
+    if ((home.array() < min.array()).any() || (home.array() > max.array()).any()) {
+      throw std::runtime_error("leader.workspace_box_m: the follower's home flange position (" + std::to_string(home.x()) +
+                               ", " + std::to_string(home.y()) + ", " + std::to_string(home.z()) + ") m is outside it");
+    }
+    cartesian_.bound(min, max);
   }
+  if (device_kinematics_) device_kinematics_->update(device_.q_rad, device_.dq_radps);
+  Eigen::Vector3d x;
+  Eigen::Matrix3d r;
+  control::Vector6 v;
+  device_pose(x, r, v);
+  cartesian_.start(x, r, home, command_kinematics_->rotation());
+}
+
+void LeaderNode::device_pose(Eigen::Vector3d& x, Eigen::Matrix3d& r, control::Vector6& v) const {
+  if (device_kinematics_) {
+    x = device_kinematics_->position();
+    r = device_kinematics_->rotation();
+    v = device_kinematics_->twist();
+    return;
+  }
+  // a Cartesian device reports its pose itself
+  const auto& p = device_.position_m;
+  const auto& q = device_.orientation_wxyz;
+  x = Eigen::Vector3d(p[0], p[1], p[2]);
+  r = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+  for (int i = 0; i < 6; ++i) v[i] = device_.twist[static_cast<size_t>(i)];
 }
 
 void LeaderNode::watch_authority(transport::Participant& participant, const std::string& self) {
@@ -90,6 +122,14 @@ void LeaderNode::update_state(int64_t now_ns) {
   const bool refused = refusal != runtime::CommandRefusal::kNone && refusal != runtime::CommandRefusal::kNoTaker &&
                        refusal != runtime::CommandRefusal::kNotYet;
   if (fresh && !authority_->in_command()) ++cycles_not_in_command_;
+  // a device that cannot be read (unplugged) holds the command until it is back
+  if (!device_connected_) {
+    if (state_ == msg::STATE_RUNNING) {
+      ++device_lost_events_;
+      state_ = msg::STATE_SAFE_HOLD;
+    }
+    return;
+  }
   if (fresh && authority_->in_command()) {
     if (state_ == msg::STATE_SAFE_HOLD) architecture_->restart();  // a new session with the follower
     state_ = msg::STATE_RUNNING;
@@ -100,18 +140,26 @@ void LeaderNode::update_state(int64_t now_ns) {
   }
 }
 
-void LeaderNode::move_device(double t_s) {
+bool LeaderNode::move_device(double t_s) {
   // the simulated operator's intent moves a simulated device; a real one is held by a person
   motion_.sample(t_s, intent_.q_rad, intent_.dq_radps);
   motion_.intended_torque(t_s, intent_.tau_nm);
   device_impl_->set_operator_intent(intent_);
   // the buttons held in this cycle, whatever a device that has none leaves in the word
   device_.buttons = 0;
-  if (!device_impl_->read(device_)) ++device_faults_;
+  const bool read = device_impl_->read(device_);
+  if (!read) ++device_faults_;
   // the simulated operator's presses (leader.button_presses) and the input device's buttons on
   // top of what the device reports
   device_.buttons |= motion_.pressed_buttons(t_s);
   if (button_input_) device_.buttons |= button_input_->word();
+  return read;
+}
+
+bool LeaderNode::held_by_buttons() const {
+  const auto pressed = [&](int button) { return (device_.buttons >> button & 1u) != 0; };
+  const StopButtons& b = config_.stop_buttons;
+  return (b.dead_man >= 0 && !pressed(b.dead_man)) || (b.clutch >= 0 && pressed(b.clutch));
 }
 
 void LeaderNode::send_stop_requests(int64_t now_ns) {
@@ -145,7 +193,11 @@ void LeaderNode::send_command(bool frozen) {
   for (size_t i = 0; i < config_.joints; ++i) dq_cmd_[i] = frozen ? 0.0 : config_.workspace_scale * device_.dq_radps[i];
   if (device_kinematics_) device_kinematics_->update(device_.q_rad, device_.dq_radps);
   if (architecture_->cartesian()) {
-    cartesian_.map(device_kinematics_->position(), device_kinematics_->rotation(), device_kinematics_->twist(), frozen);
+    Eigen::Vector3d x;
+    Eigen::Matrix3d r;
+    control::Vector6 v;
+    device_pose(x, r, v);
+    cartesian_.map(x, r, v, frozen);
     command_position_ = cartesian_.position();
   } else if (command_kinematics_) {
     // the commanded joints' flange position: only needed where the command is not Cartesian
@@ -174,14 +226,19 @@ void LeaderNode::cycle(const CycleTick& tick) {
   poll_peers();
   update_state(tick.now_ns);
   // the operator keeps moving; what the follower is sent freezes while it is lost
-  move_device(static_cast<double>(tick.index) * period_s_);
+  device_connected_ = move_device(static_cast<double>(tick.index) * period_s_);
   send_stop_requests(tick.now_ns);
   command_hand(static_cast<double>(tick.index) * period_s_);
-  send_command(state_ == msg::STATE_SAFE_HOLD || emergency_stopped_);
+  // the dead-man released or the clutch held: the command holds, the device moves freely; a
+  // device that could not be read moves nothing (update_state holds the leader from the next cycle)
+  const bool held = held_by_buttons();
+  if (held) ++cycles_held_by_buttons_;
+  send_command(state_ == msg::STATE_SAFE_HOLD || emergency_stopped_ || held || !device_connected_);
   const bool fresh = architecture_->feedback(mapped_device(), tick.now_ns, feedback_, rejected_feedback_);
-  // lost or stale source, the follower gone, or an emergency stop: fade the feedback out, never cut it
-  renderer_.render(feedback_,
-                   config_.feedback_enabled && fresh && state_ == msg::STATE_RUNNING && !emergency_stopped_);
+  // lost or stale source, the follower gone, an emergency stop, or the operator's hand off the
+  // device (its dead-man released): fade the feedback out, never cut it
+  renderer_.render(feedback_, config_.feedback_enabled && fresh && state_ == msg::STATE_RUNNING && !emergency_stopped_ &&
+                                  !held);
   if (!device_impl_->write(renderer_.output())) ++device_faults_;
   publish_device_state();
   update_trace_values();
@@ -205,7 +262,10 @@ void LeaderNode::fill_status(msg::NodeStatus& status) const {
 void LeaderNode::active_faults(std::vector<uint32_t>& faults) const {
   const int64_t now_ns = monotonic_now_ns();
   const bool fresh = follower_state_.age_ns(now_ns) < static_cast<int64_t>(config_.peer_timeout_s * 1e9);
-  if (state_ == msg::STATE_SAFE_HOLD) faults.push_back(fresh ? msg::FAULT_NOT_IN_COMMAND : msg::FAULT_PEER_LOST);
+  // held for its device (unplugged), or for the follower: not in command, or gone
+  if (state_ == msg::STATE_SAFE_HOLD && device_connected_) {
+    faults.push_back(fresh ? msg::FAULT_NOT_IN_COMMAND : msg::FAULT_PEER_LOST);
+  }
   if (device_faults_ > 0) faults.push_back(msg::FAULT_HARDWARE);
 }
 
@@ -222,6 +282,9 @@ void LeaderNode::fill_report(runtime::NodeReport& report) const {
   report.counters.emplace_back("cycles_not_in_command", static_cast<double>(cycles_not_in_command_));
   report.counters.emplace_back("in_command", authority_->in_command() ? 1.0 : 0.0);
   report.counters.emplace_back("device_faults", static_cast<double>(device_faults_));
+  report.counters.emplace_back("device_lost_events", static_cast<double>(device_lost_events_));
+  report.counters.emplace_back("cycles_held_by_buttons", static_cast<double>(cycles_held_by_buttons_));
+  report.counters.emplace_back("workspace_box_saturations", static_cast<double>(cartesian_.box_saturations()));
   report.counters.emplace_back("emergency_stops_sent", static_cast<double>(stops_sent_));
   if (button_input_) report.counters.emplace_back("button_input_losses", static_cast<double>(button_input_->losses()));
   report.counters.emplace_back("enables_sent", static_cast<double>(enables_sent_));

@@ -57,7 +57,14 @@ class LeaderNode final : public runtime::NodeLogic {
   /// Watches whether the writer that carries this leader's commands under its architecture is in command.
   void watch_authority(transport::Participant& participant, const std::string& self);
   void update_state(int64_t now_ns);
-  void move_device(double t_s);
+  /// Reads the device (and the button input); false when it could not be read.
+  bool move_device(double t_s);
+  /// The dead-man released or the clutch held (leader.buttons): the command holds.
+  bool held_by_buttons() const;
+  /// Where the Cartesian mapping starts: the device's pose now, the follower's home; the box.
+  void start_cartesian();
+  /// The device's flange (or, a Cartesian device, handle) pose and twist of this cycle.
+  void device_pose(Eigen::Vector3d& x, Eigen::Matrix3d& r, control::Vector6& v) const;
   void send_command(bool frozen);
   MappedDevice mapped_device() const { return {q_cmd_, dq_cmd_, cartesian_, device_kinematics_.get()}; }
   void publish_device_state();
@@ -95,6 +102,9 @@ class LeaderNode final : public runtime::NodeLogic {
   Eigen::Vector3d felt_force_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d command_position_ = Eigen::Vector3d::Constant(std::nan(""));
   bool emergency_stopped_ = false;
+  bool device_connected_ = true;  // the device's last read succeeded
+  uint64_t device_lost_events_ = 0;
+  uint64_t cycles_held_by_buttons_ = 0;
   uint32_t buttons_before_ = 0;  // the device's buttons in the last cycle
   int64_t stop_sent_ns_ = 0;     // when the last stop went out
   uint64_t stops_sent_ = 0;

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "allocation_counter.h"
+#include "following_peer.h"
 #include "node_harness.h"
 #include "teleop/transport/joint_fields.h"
 
@@ -25,35 +26,9 @@ LeaderConfig config() {
   return c;
 }
 
-// the follower's side: reads commands, publishes state, and says in its status that it follows
-// the leader's commands (a leader is running only while they are in force)
-struct FollowerPeer {
-  transport::Subscription<msg::JointCommand> command;
-  transport::Publication<msg::JointState> state;
-  transport::Publication<msg::NodeStatus> status;
-  explicit FollowerPeer(transport::Participant& p)
-      : command(p, transport::topics::kLeaderCommand),
-        state(p, transport::topics::kFollowerState, "follower"),
-        status(p, transport::topics::kNodeStatus, "follower") {
-    transport::presize_joint_state(state.sample(), kJoints);
-    status.sample().role(msg::ROLE_FOLLOWER);
-    status.sample().state(msg::STATE_RUNNING);
-    status.sample().flows().emplace_back();
-    status.sample().flows().back().topic(transport::topics::kLeaderCommand.name);
-    status.sample().flows().back().awaited(true);
-    status.sample().flows().back().in_force(true);
-  }
-  // publishes the state, and the status once the leader's commands arrive
-  bool publish() {
-    command.poll();
-    if (command.has_sample()) {
-      auto& flow = status.sample().flows().back();
-      flow.following("leader");
-      flow.following_writer(command.session().writer().hex().data());
-      if (!status.publish()) return false;
-    }
-    return state.publish();
-  }
+// the follower's side of the joint commands
+struct FollowerPeer : test::FollowingPeer<msg::JointCommand> {
+  explicit FollowerPeer(transport::Participant& p) : FollowingPeer(p, transport::topics::kLeaderCommand, kJoints) {}
 };
 
 class LeaderNodeTest : public ::testing::Test {

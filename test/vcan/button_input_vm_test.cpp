@@ -8,7 +8,6 @@
 #include <linux/input-event-codes.h>
 
 #include <chrono>
-#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <thread>
@@ -18,6 +17,7 @@
 #include "teleop/transport/topics.h"
 #include "vcan_support.h"
 #include "vm_bus.h"
+#include "vm_eventually.h"
 
 namespace teleop::leader {
 namespace {
@@ -51,14 +51,7 @@ class VirtualButton {
   libevdev_uinput* uinput_ = nullptr;
 };
 
-bool eventually(const std::function<bool()>& condition, std::chrono::milliseconds within) {
-  const auto until = std::chrono::steady_clock::now() + within;
-  while (std::chrono::steady_clock::now() < until) {
-    if (condition()) return true;
-    std::this_thread::sleep_for(10ms);
-  }
-  return condition();
-}
+using test::eventually;
 
 ButtonInputConfig by_name() { return {kName, {{KEY_PAUSE, 0}, {BTN_0, 3}}}; }
 

@@ -44,7 +44,8 @@ struct MappedDevice {
   const JointVector& dq_cmd;
   /// The Cartesian mapping, run this cycle when the architecture is cartesian().
   const CartesianMapping& cartesian;
-  /// The device's kinematics at its pose of this cycle; null without leader.arm_model.
+  /// The device's kinematics at its pose of this cycle; null without leader.arm_model and for a
+  /// Cartesian device (DeviceSpec::cartesian()).
   const ArmKinematics* kinematics;
 };
 

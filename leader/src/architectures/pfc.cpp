@@ -76,7 +76,12 @@ bool PfcLeader::feedback(const MappedDevice& device, int64_t now_ns, JointVector
   for (int i = 0; i < 6; ++i) render[i] = -f_out[static_cast<size_t>(i)];
   // device force for a follower-space force: scaled like the motion (power preserved)
   render.head<3>() *= config_.workspace_scale;
-  device.kinematics->torque_for_wrench(render, feedback);
+  // a Cartesian device has no arm to render it on (a 6-DoF mouse): the channel runs, nothing is felt
+  if (device.kinematics == nullptr) {
+    feedback.fill(0.0);
+  } else {
+    device.kinematics->torque_for_wrench(render, feedback);
+  }
   return follower_wrench_.age_ns(now_ns) < static_cast<int64_t>(config_.peer_timeout_s * 1e9);
 }
 

@@ -34,6 +34,9 @@ class DeviceSpec {
   virtual ~DeviceSpec() = default;
   /// The device's name, as in the configuration.
   virtual const char* device() const = 0;
+  /// The device moves a Cartesian pose (DeviceState::position_m, ...), not joints: it can drive
+  /// only the architectures that map the device in Cartesian space (pfc, pfc_tdpa).
+  virtual bool cartesian() const { return false; }
   /// Builds the device. Setup time; throws naming what fails.
   virtual std::unique_ptr<LeaderDevice> make(const DeviceSetup& setup) const = 0;
 };

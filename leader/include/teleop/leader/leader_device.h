@@ -3,8 +3,10 @@
 // reports its joint state and renders feedback torques. The leader's node sees only this; which
 // device it drives is chosen in the configuration (`leader.device`) from a DeviceRegistry
 // (device_registry.h). Implementations: the script itself, a simulated haptic arm pulled by a
-// simulated operator, the replay of a recording (simulated_devices.h); a real device plugs in here.
+// simulated operator, the replay of a recording (simulated_devices.h); a 6-DoF mouse and a gamepad
+// through Linux input (input_devices.h); a real device plugs in here.
 
+#include <array>
 #include <cstdint>
 
 #include "teleop/common/joint_model.h"
@@ -18,6 +20,13 @@ struct DeviceState {
   JointVector tau_operator_nm{};
   /// Bit k set: the device's button k is pressed (leader.buttons says what a button does).
   uint32_t buttons = 0;
+  /// A Cartesian device's handle (a 6-DoF mouse, a gamepad: DeviceSpec::cartesian()), in the
+  /// follower's base frame about where it started: position, orientation and twist (linear, then
+  /// angular). It leaves the joints above as the leader set them (its home, at rest); a joint
+  /// device leaves these, and its flange pose comes from the arm's model.
+  std::array<double, 3> position_m{};
+  std::array<double, 4> orientation_wxyz{1.0, 0.0, 0.0, 0.0};
+  std::array<double, 6> twist{};
 };
 
 /// What the simulated operator (leader.motion) wants this period: where the device should be, in

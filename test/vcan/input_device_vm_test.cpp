@@ -1,0 +1,183 @@
+// leader.device: spacemouse and gamepad against the kernel's input layer (leader/input_device.h),
+// in the VM that has evdev and uinput: virtual devices made with uinput in the event maps of the
+// real ones (a SpaceNavigator: 046d:c626, its cap on REL_X..REL_RZ about +-350 and BTN_0/BTN_1; an
+// Xbox-class pad: sticks on ABS_X/Y/RX/RY over -32768..32767, BTN_TL/BTN_TR) move the device's
+// pose at the configured speed, stop it when let go, and a device unplugged fails its reads until
+// it is found again.
+#include <gtest/gtest.h>
+#include <libevdev/libevdev-uinput.h>
+#include <libevdev/libevdev.h>
+#include <linux/input-event-codes.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "teleop/leader/device_registry.h"
+#include "teleop/leader/input_devices.h"
+#include "vm_eventually.h"
+
+namespace teleop::leader {
+namespace {
+
+using namespace std::chrono_literals;
+using test::eventually;
+
+// a device made with uinput: its name and id, and the axes and keys it reports
+class VirtualDevice {
+ public:
+  VirtualDevice(const char* name, int vendor, int product, unsigned axis_type, const std::vector<unsigned>& axes,
+                const std::vector<unsigned>& keys) {
+    libevdev* d = libevdev_new();
+    libevdev_set_name(d, name);
+    libevdev_set_id_bustype(d, BUS_USB);
+    libevdev_set_id_vendor(d, vendor);
+    libevdev_set_id_product(d, product);
+    input_absinfo stick{0, -32768, 32767, 16, 128, 0};
+    for (unsigned a : axes) libevdev_enable_event_code(d, axis_type, a, axis_type == EV_ABS ? &stick : nullptr);
+    for (unsigned k : keys) libevdev_enable_event_code(d, EV_KEY, k, nullptr);
+    const int rc = libevdev_uinput_create_from_device(d, LIBEVDEV_UINPUT_OPEN_MANAGED, &uinput_);
+    libevdev_free(d);
+    if (rc != 0) throw std::runtime_error("uinput: " + std::string(strerror(-rc)));
+    std::this_thread::sleep_for(300ms);  // udev-less VM: devtmpfs makes the node at once, give it a moment
+  }
+  ~VirtualDevice() { libevdev_uinput_destroy(uinput_); }
+  // one report: the events, then SYN_REPORT
+  void report(const std::vector<input_event>& events) {
+    for (const input_event& e : events) libevdev_uinput_write_event(uinput_, e.type, e.code, e.value);
+    libevdev_uinput_write_event(uinput_, EV_SYN, SYN_REPORT, 0);
+  }
+
+ private:
+  libevdev_uinput* uinput_ = nullptr;
+};
+
+input_event event(unsigned type, unsigned code, int value) {
+  input_event e{};
+  e.type = static_cast<uint16_t>(type);
+  e.code = static_cast<uint16_t>(code);
+  e.value = value;
+  return e;
+}
+
+std::unique_ptr<VirtualDevice> space_navigator() {
+  return std::make_unique<VirtualDevice>("3Dconnexion SpaceNavigator", 0x046d, 0xc626, EV_REL,
+                                         std::vector<unsigned>{REL_X, REL_Y, REL_Z, REL_RX, REL_RY, REL_RZ},
+                                         std::vector<unsigned>{BTN_0, BTN_1});
+}
+
+// the leader's device as its configuration makes it (a 1 kHz loop)
+std::unique_ptr<LeaderDevice> make(const std::string& yaml) {
+  DeviceRegistry devices;
+  add_input_devices(devices);
+  const ConfigNode root = ConfigNode::load_string(yaml, "leader.yaml");
+  DeviceSetup setup;
+  setup.period_s = 1e-3;
+  return devices.parse(root.child("leader"))->make(setup);
+}
+
+// a device sending a report every 8 ms while `sending`, as a held cap does
+class Reporter {
+ public:
+  Reporter(VirtualDevice& device, std::vector<input_event> report) {
+    thread_ = std::thread([&device, report, this] {
+      while (sending_) {
+        device.report(report);
+        std::this_thread::sleep_for(8ms);
+      }
+    });
+  }
+  ~Reporter() { stop(); }
+  void stop() {
+    sending_ = false;
+    if (thread_.joinable()) thread_.join();
+  }
+
+ private:
+  std::atomic<bool> sending_{true};
+  std::thread thread_;
+};
+
+TEST(InputDeviceVm, ASpaceNavigatorsHeldCapMovesThePoseAtItsSpeedAndItsReleaseStopsIt) {
+  auto navigator = space_navigator();
+  const auto device = make("leader:\n  device: spacemouse\n  spacemouse: {device: \"046d:c626\", linear_speed_mps: 0.1}\n");
+  DeviceState state;
+  ASSERT_TRUE(device->read(state));
+  EXPECT_EQ(state.twist[0], 0.0) << "a cap at rest";
+  // pushed fully along +x, half along -y (beyond the dead band of 0.1: 0.4 / 0.9 of full speed)
+  Reporter held(*navigator, {event(EV_REL, REL_X, 350), event(EV_REL, REL_Y, -175)});
+  ASSERT_TRUE(eventually([&] { return device->read(state) && state.twist[0] > 0.0; }, 3000ms));
+  EXPECT_DOUBLE_EQ(state.twist[0], 0.1);
+  EXPECT_NEAR(state.twist[1], -0.1 * 0.4 / 0.9, 1e-12);
+  EXPECT_EQ(state.twist[2], 0.0);
+  for (int i = 0; i < 200; ++i) {
+    ASSERT_TRUE(device->read(state));
+    std::this_thread::sleep_for(1ms);
+  }
+  EXPECT_GT(state.position_m[0], 0.0);
+  EXPECT_NEAR(state.position_m[1] / state.position_m[0], -0.4 / 0.9, 0.2) << "moved along the deflection";
+  EXPECT_EQ(state.position_m[2], 0.0);
+  // let go: the kernel drops the zero values, the cap goes silent and reads as rest after release_ms
+  held.stop();
+  ASSERT_TRUE(eventually([&] { return device->read(state) && state.twist[0] == 0.0; }, 3000ms));
+  const double stopped_at = state.position_m[0];
+  for (int i = 0; i < 50; ++i) ASSERT_TRUE(device->read(state));
+  EXPECT_EQ(state.position_m[0], stopped_at) << "at rest the pose holds";
+}
+
+TEST(InputDeviceVm, AGamepadsSticksAndButtonsMapByItsRangeAndTheDeflectionEndsWithTheStick) {
+  VirtualDevice pad("Microsoft X-Box 360 pad", 0x045e, 0x028e, EV_ABS, {ABS_X, ABS_Y, ABS_RX, ABS_RY},
+                    {BTN_TL, BTN_TR, BTN_SOUTH});
+  const auto device = make("leader:\n  device: gamepad\n  gamepad: {device: \"Microsoft X-Box 360 pad\"}\n");
+  DeviceState state;
+  // the left stick fully up: forward (+x) at full speed; the right bumper: button 0
+  pad.report({event(EV_ABS, ABS_Y, -32768), event(EV_KEY, BTN_TR, 1)});
+  ASSERT_TRUE(eventually(
+      [&] {
+        state.buttons = 0;
+        return device->read(state) && state.twist[0] > 0.04;
+      },
+      3000ms));
+  EXPECT_NEAR(state.twist[0], 0.05, 1e-4) << "the default 0.05 m/s at full deflection";
+  EXPECT_EQ(state.buttons, 1u << 0);
+  // released: an absolute axis reports its return, the motion ends at once
+  pad.report({event(EV_ABS, ABS_Y, 0), event(EV_KEY, BTN_TR, 0)});
+  ASSERT_TRUE(eventually(
+      [&] {
+        state.buttons = 0;
+        return device->read(state) && state.twist[0] == 0.0 && state.buttons == 0;
+      },
+      3000ms));
+}
+
+TEST(InputDeviceVm, AnUnpluggedDeviceFailsItsReadsUntilItIsFoundAgain) {
+  auto navigator = space_navigator();
+  const auto device = make("leader:\n  device: spacemouse\n  spacemouse: {device: \"3Dconnexion SpaceNavigator\"}\n");
+  DeviceState state;
+  ASSERT_TRUE(device->read(state));
+  navigator.reset();
+  ASSERT_TRUE(eventually([&] { return !device->read(state); }, 3000ms));
+  EXPECT_EQ(state.twist[0], 0.0);
+  navigator = space_navigator();
+  EXPECT_TRUE(eventually([&] { return device->read(state); }, 5000ms)) << "found again by its name";
+}
+
+TEST(InputDeviceVm, ADeviceWithoutAConfiguredAxisIsRefusedNamingIt) {
+  VirtualDevice pad("teleop test pad", 0x1234, 0x5678, EV_ABS, {ABS_X, ABS_Y}, {BTN_TR, BTN_TL});
+  try {
+    make("leader:\n  device: gamepad\n  gamepad: {device: \"teleop test pad\"}\n");
+    FAIL() << "accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("leader.gamepad: /dev/input/"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("has no axis ABS_RY"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(make("leader:\n  device: gamepad\n  gamepad: {device: \"no such pad\"}\n"), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace teleop::leader
