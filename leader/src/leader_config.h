@@ -18,7 +18,7 @@
 #include "operator_motion.h"
 #include "scripted_device.h"
 #include "teleop/leader/device_registry.h"
-#include "teleop/leader/simulated_devices.h"
+#include "teleop/leader/builtin_devices.h"
 #include "teleop/runtime/architecture.h"
 
 namespace teleop::leader {
@@ -97,9 +97,9 @@ std::shared_ptr<const JointTrajectory> load_recording(const ConfigNode& section,
 
 /// Reads the `leader:` and `teleoperation:` sections of one hand, the device from `devices`. Throws
 /// ConfigError naming file, key and problem; loads every file it names (models, recordings) on the way.
-LeaderConfig parse_leader_config(const ConfigNode& root, const DeviceRegistry& devices = simulated_devices());
+LeaderConfig parse_leader_config(const ConfigNode& root, const DeviceRegistry& devices = builtin_devices());
 
 /// One config per hand of `leader.arms`, in the file's order; a single unnamed hand without it.
-std::vector<LeaderConfig> parse_leader_arms(const ConfigNode& root, const DeviceRegistry& devices = simulated_devices());
+std::vector<LeaderConfig> parse_leader_arms(const ConfigNode& root, const DeviceRegistry& devices = builtin_devices());
 
 }  // namespace teleop::leader

@@ -1,13 +1,11 @@
 // teleop_leader: the operator's station. Its edge: the input devices it can drive (`leader.device`);
 // a real device is one more line here (docs/architecture.md, "A new operator device").
-#include "teleop/leader/input_devices.h"
+#include "teleop/leader/builtin_devices.h"
 #include "teleop/leader/leader_arms.h"
-#include "teleop/leader/simulated_devices.h"
 
 int main(int argc, char** argv) {
   teleop::leader::DeviceRegistry devices;
-  teleop::leader::add_simulated_devices(devices);
-  teleop::leader::add_input_devices(devices);
+  teleop::leader::add_builtin_devices(devices);
   return teleop::runtime::run_node(
       argc, argv,
       {teleop::msg::ROLE_LEADER, "leader", "teleop leader: the operator's station, streams the commanded motion",
