@@ -1,5 +1,6 @@
 #include "teleop/leader/builtin_devices.h"
 
+#include "plugin_device.h"
 #include "teleop/leader/input_devices.h"
 #include "teleop/leader/simulated_devices.h"
 
@@ -8,6 +9,7 @@ namespace teleop::leader {
 void add_builtin_devices(DeviceRegistry& registry) {
   add_simulated_devices(registry);
   add_input_devices(registry);
+  registry.add("plugin", parse_plugin_device);
 }
 
 const DeviceRegistry& builtin_devices() {

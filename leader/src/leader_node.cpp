@@ -217,9 +217,13 @@ void LeaderNode::publish_device_state() {
 }
 
 void LeaderNode::update_trace_values() {
-  if (!device_kinematics_) return;
-  // what the operator feels, as a force in the follower's frame (undoing the workspace scaling)
-  felt_force_ = device_kinematics_->wrench_for_torque(renderer_.output()).head<3>() / config_.workspace_scale;
+  // what the operator feels, as a force in the follower's frame (undoing the workspace scaling); a
+  // Cartesian device is rendered the force itself
+  if (device_kinematics_) {
+    felt_force_ = device_kinematics_->wrench_for_torque(renderer_.output()).head<3>() / config_.workspace_scale;
+  } else if (config_.device->cartesian()) {
+    felt_force_ = Eigen::Vector3d(renderer_.output()[0], renderer_.output()[1], renderer_.output()[2]) / config_.workspace_scale;
+  }
 }
 
 void LeaderNode::cycle(const CycleTick& tick) {
@@ -306,7 +310,7 @@ void LeaderNode::trace_columns(std::vector<std::string>& columns) const {
 
 void LeaderNode::trace_row(double* row) const {
   const double nan = std::nan("");
-  const bool kinematics = device_kinematics_ != nullptr;
+  const bool kinematics = device_kinematics_ != nullptr || config_.device->cartesian();
   for (int i = 0; i < 3; ++i) *row++ = command_position_[i];
   for (int i = 0; i < 3; ++i) *row++ = kinematics ? felt_force_[i] : nan;
   *row++ = architecture_->observed_energy_j();

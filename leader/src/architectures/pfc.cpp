@@ -76,9 +76,10 @@ bool PfcLeader::feedback(const MappedDevice& device, int64_t now_ns, JointVector
   for (int i = 0; i < 6; ++i) render[i] = -f_out[static_cast<size_t>(i)];
   // device force for a follower-space force: scaled like the motion (power preserved)
   render.head<3>() *= config_.workspace_scale;
-  // a Cartesian device has no arm to render it on (a 6-DoF mouse): the channel runs, nothing is felt
+  // a Cartesian device (a delta, a 6-DoF mouse) takes the wrench itself: force, then moment
   if (device.kinematics == nullptr) {
     feedback.fill(0.0);
+    for (int i = 0; i < 6; ++i) feedback[static_cast<size_t>(i)] = render[i];
   } else {
     device.kinematics->torque_for_wrench(render, feedback);
   }

@@ -1,6 +1,6 @@
 #pragma once
-// Every leader device this build has: the simulated ones (simulated_devices.h), then the Linux
-// input ones (input_devices.h). What the leader executable registers, and what a leader's
+// Every leader device this build has: the simulated ones (simulated_devices.h), the Linux input
+// ones (input_devices.h), and a vendor's device in a plugin (`plugin`: teleop_device_v1.h). What the leader executable registers, and what a leader's
 // configuration is read against unless a caller brings its own registry, so that the shipped
 // files, which carry the settings of each, read anywhere.
 
@@ -8,7 +8,7 @@
 
 namespace teleop::leader {
 
-/// Registers scripted, haptic_arm, replay, spacemouse and gamepad.
+/// Registers scripted, haptic_arm, replay, spacemouse, gamepad and plugin.
 void add_builtin_devices(DeviceRegistry& registry);
 
 /// A registry of them.

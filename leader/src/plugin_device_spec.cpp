@@ -1,0 +1,46 @@
+// `leader.device: plugin`: the library loaded and its table checked while the configuration is
+// read (a wrong library is a configuration error), the device opened when the node starts.
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "plugin_device.h"
+#include "teleop/leader/device_registry.h"
+
+namespace teleop::leader {
+namespace {
+
+class PluginSpec final : public DeviceSpec {
+ public:
+  PluginSpec(std::shared_ptr<const PluginLibrary> library, PluginSettings settings)
+      : library_(std::move(library)), settings_(std::move(settings)) {}
+  const char* device() const override { return "plugin"; }
+  bool cartesian() const override { return library_->cartesian(); }
+  std::unique_ptr<LeaderDevice> make(const DeviceSetup& setup) const override {
+    return std::make_unique<PluginDevice>(library_, settings_, setup.period_s, setup.joints);
+  }
+
+ private:
+  std::shared_ptr<const PluginLibrary> library_;
+  PluginSettings settings_;
+};
+
+}  // namespace
+
+std::shared_ptr<const DeviceSpec> parse_plugin_device(const ConfigNode& leader_section) {
+  const ConfigNode s = leader_section.child("plugin");
+  // a path is the file's (relative to the config); a bare name is dlopen's to find
+  const std::string given = s.get_string("library");
+  const std::string library = given.find('/') != std::string::npos ? s.get_path("library") : given;
+  PluginSettings settings;
+  if (const auto values = s.optional_child("settings")) {
+    for (const std::string& key : values->keys()) settings.emplace_back(key, values->get_string(key));
+  }
+  try {
+    return std::make_shared<PluginSpec>(std::make_shared<const PluginLibrary>(library), std::move(settings));
+  } catch (const std::runtime_error& e) {
+    throw s.error("library", e.what());
+  }
+}
+
+}  // namespace teleop::leader
