@@ -1,10 +1,12 @@
 // `leader.device: plugin`: the library loaded and its table checked while the configuration is
 // read (a wrong library is a configuration error), the device opened when the node starts.
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 #include <string>
 
 #include "plugin_device.h"
+#include "teleop/common/data_paths.h"
 #include "teleop/leader/device_registry.h"
 
 namespace teleop::leader {
@@ -25,13 +27,28 @@ class PluginSpec final : public DeviceSpec {
   PluginSettings settings_;
 };
 
+// A plugin's name ("simulated_delta"): libteleop_<name>.so where teleop's plugins are, beside the
+// running executable (<prefix>/lib/teleop/plugins) or in this build tree; else "" (a library name
+// for dlopen's own search, "libomega_teleop.so")
+std::string find_named_plugin(const std::string& name) {
+  const std::string file = "libteleop_" + name + ".so";
+  const std::filesystem::path prefix = DataRoots::current().beside_executable.parent_path().parent_path();
+  for (const std::filesystem::path& folder : {prefix / TELEOP_PLUGIN_DIR, std::filesystem::path(TELEOP_BUILD_PLUGIN_DIR)}) {
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(folder / file, ec)) return (folder / file).lexically_normal().string();
+  }
+  return "";
+}
+
 }  // namespace
 
 std::shared_ptr<const DeviceSpec> parse_plugin_device(const ConfigNode& leader_section) {
   const ConfigNode s = leader_section.child("plugin");
-  // a path is the file's (relative to the config); a bare name is dlopen's to find
+  // a path is the file's (relative to the config); a name is one of teleop's plugins, or
+  // dlopen's to find
   const std::string given = s.get_string("library");
-  const std::string library = given.find('/') != std::string::npos ? s.get_path("library") : given;
+  std::string library = given.find('/') != std::string::npos ? s.get_path("library") : find_named_plugin(given);
+  if (library.empty()) library = given;
   PluginSettings settings;
   if (const auto values = s.optional_child("settings")) {
     for (const std::string& key : values->keys()) settings.emplace_back(key, values->get_string(key));
