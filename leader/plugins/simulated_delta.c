@@ -5,10 +5,13 @@
  * through a spring-damper and moves along a script: out to `reach_*_m` over `ramp_s`, plus a sine
  * of `amplitude_*_m` at `frequency_hz`. The force the leader renders acts on the mass, so the
  * hand feels it and gives way to it as a real operator's would:
- *   m dv/dt = K (target - p) - D v + F_rendered,  p kept inside the cube by its end stops.
+ *   m dv/dt = K (target - p) - D v - c v + F_rendered,  p kept inside the cube by its end stops,
+ * c the mechanism's own viscous friction. From let_go_at_s on the hand is off: no K, no D, no
+ * button held, only the rendered force and the friction act on the handle.
  * Settings (leader.plugin.settings): mass_kg, hand_stiffness_n_per_m, hand_damping_ns_per_m,
- * reach_{x,y,z}_m, ramp_s, amplitude_{x,y,z}_m, frequency_hz, half_side_m, max_force_n, buttons;
- * and to test the leader's handling of a failing device: fail_after_reads, nan_after_reads. */
+ * friction_ns_per_m, reach_{x,y,z}_m, ramp_s, amplitude_{x,y,z}_m, frequency_hz, half_side_m,
+ * max_force_n, buttons, let_go_at_s; and to test the leader's handling of a failing device:
+ * fail_after_reads, nan_after_reads. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -19,7 +22,8 @@
 
 struct teleop_device {
   double period_s;
-  double mass_kg, stiffness, damping, reach[3], ramp_s, amplitude[3], frequency_hz, half_side_m, max_force_n;
+  double mass_kg, stiffness, damping, friction, reach[3], ramp_s, amplitude[3], frequency_hz, half_side_m, max_force_n;
+  double let_go_at_s;
   long fail_after_reads, nan_after_reads;
   uint32_t buttons;
   long reads;
@@ -41,7 +45,8 @@ static int set(struct teleop_device* d, const char* key, double value) {
       {"mass_kg", &d->mass_kg}, {"hand_stiffness_n_per_m", &d->stiffness}, {"hand_damping_ns_per_m", &d->damping},
       {"reach_x_m", &d->reach[0]}, {"reach_y_m", &d->reach[1]}, {"reach_z_m", &d->reach[2]}, {"ramp_s", &d->ramp_s},
       {"amplitude_x_m", &d->amplitude[0]}, {"amplitude_y_m", &d->amplitude[1]}, {"amplitude_z_m", &d->amplitude[2]},
-      {"frequency_hz", &d->frequency_hz}, {"half_side_m", &d->half_side_m}, {"max_force_n", &d->max_force_n}};
+      {"frequency_hz", &d->frequency_hz}, {"half_side_m", &d->half_side_m}, {"max_force_n", &d->max_force_n},
+      {"friction_ns_per_m", &d->friction}, {"let_go_at_s", &d->let_go_at_s}};
   for (size_t i = 0; i < sizeof doubles / sizeof doubles[0]; ++i) {
     if (strcmp(key, doubles[i].key) == 0) {
       *doubles[i].field = value;
@@ -67,6 +72,8 @@ static teleop_device* delta_open(const char* const* keys, const char* const* val
   d->frequency_hz = 0.2;
   d->half_side_m = 0.08;
   d->max_force_n = 12.0;
+  d->friction = 2.0;
+  d->let_go_at_s = INFINITY;
   d->buttons = 1u; /* the hand holds the device: its button 0 (a dead-man, if the leader makes it one) */
   for (uint32_t i = 0; i < count; ++i) {
     char* end = NULL;
@@ -107,9 +114,11 @@ static int delta_read(teleop_device* d, teleop_device_state* state) {
     return -1;
   }
   const double t = (double)d->reads * d->period_s;
+  const int hand_on = t < d->let_go_at_s;
   ++d->reads;
   for (int k = 0; k < 3; ++k) {
-    const double f = d->stiffness * (target(d, k, t) - d->p[k]) - d->damping * d->v[k] + d->force[k];
+    const double hand = hand_on ? d->stiffness * (target(d, k, t) - d->p[k]) - d->damping * d->v[k] : 0.0;
+    const double f = hand - d->friction * d->v[k] + d->force[k];
     d->v[k] += f / d->mass_kg * d->period_s;
     d->p[k] += d->v[k] * d->period_s;
     /* the end stops */
@@ -126,7 +135,7 @@ static int delta_read(teleop_device* d, teleop_device_state* state) {
     state->twist[k] = d->v[k];
   }
   state->orientation_wxyz[0] = 1.0;
-  state->buttons = d->buttons;
+  state->buttons = hand_on ? d->buttons : 0u;
   return 0;
 }
 

@@ -10,10 +10,11 @@ FeedbackRenderer::FeedbackRenderer(size_t joints, const FeedbackConfig& config, 
       config_(config),
       filter_(config.cutoff_hz, rate_hz),
       fade_step_(config.fade_s > 0 ? 1.0 / (config.fade_s * rate_hz) : 1.0),
+      let_go_step_(std::max(fade_step_, config.hands_off_fade_s > 0 ? 1.0 / (config.hands_off_fade_s * rate_hz) : 1.0)),
       rate_step_(config.max_rate_nm_per_s > 0 ? config.max_rate_nm_per_s / rate_hz : 0.0) {}
 
-const JointVector& FeedbackRenderer::render(const JointVector& raw, bool active) {
-  fade_ = std::clamp(fade_ + (active ? fade_step_ : -fade_step_), 0.0, 1.0);
+const JointVector& FeedbackRenderer::render(const JointVector& raw, bool active, bool let_go) {
+  fade_ = std::clamp(fade_ + (active ? fade_step_ : -(let_go ? let_go_step_ : fade_step_)), 0.0, 1.0);
   // the filter runs on the raw signal all the time, so fading back in starts from its present value
   const JointVector& smooth = filter_.apply(raw, joints_);
   for (size_t i = 0; i < joints_; ++i) {

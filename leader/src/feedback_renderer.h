@@ -23,6 +23,9 @@ struct FeedbackConfig {
   double max_rate_nm_per_s = 500.0;
   /// Time to fade the feedback to zero (source lost, clutch) and back.
   double fade_s = 0.2;
+  /// Time to fade it out once the operator let go (the dead-man released, hands_off_guard.h):
+  /// short, as nothing but the device's own friction opposes the force then.
+  double hands_off_fade_s = 0.02;
 };
 
 class FeedbackRenderer {
@@ -30,8 +33,8 @@ class FeedbackRenderer {
   FeedbackRenderer(size_t joints, const FeedbackConfig& config, double rate_hz);
 
   /// One cycle: `raw` is the architecture's feedback; `active` false (source lost or stale,
-  /// clutch engaged) fades the output to zero. Real-time safe.
-  const JointVector& render(const JointVector& raw, bool active);
+  /// clutch engaged) fades the output to zero, within hands_off_fade_s when `let_go`. Real-time safe.
+  const JointVector& render(const JointVector& raw, bool active, bool let_go = false);
 
   const JointVector& output() const { return out_; }
   /// 1: full feedback, 0: faded out.
@@ -45,6 +48,7 @@ class FeedbackRenderer {
   FeedbackConfig config_;
   LowPassFilter filter_;
   double fade_step_;
+  double let_go_step_;
   double rate_step_;
   double fade_ = 0.0;  // starts faded out: feedback comes in gently
   JointVector out_{};

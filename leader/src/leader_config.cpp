@@ -51,6 +51,7 @@ OperatorMotionConfig parse_motion(const ConfigNode& s, size_t joints, const Join
   m.amplitude_rad = read_joint_list(s, "amplitudes_rad", joints, Range{-M_PI, M_PI}, amplitude);
   m.frequency_hz = s.get_double("frequency_hz", Range{0, 50}, m.frequency_hz);
   m.ramp_s = s.get_double("ramp_s", Range{0, 60}, m.ramp_s);
+  m.let_go_at_s = s.get_double("let_go_at_s", Range{0, 1e6}, m.let_go_at_s);
   for (const ConfigNode& p : s.get_node_list("button_presses")) {
     m.presses.push_back({static_cast<uint32_t>(p.get_int("button", Range{0, kMaxButton})), p.get_double("at_s", Range{0, 1e6}),
                          p.get_double("hold_s", Range{1e-3, 1e6}, 0.2)});
@@ -103,6 +104,13 @@ void parse_feedback(const ConfigNode& s, LeaderConfig& c) {
   c.feedback.max_torque_nm = read_joint_list(f, "max_torque_nm", c.joints, Range{0, 1e3}, 20.0);
   c.feedback.max_rate_nm_per_s = f.get_bound_or_off("max_rate_nm_per_s", Range{1, 1e6}, c.feedback.max_rate_nm_per_s);
   c.feedback.fade_s = f.get_double("fade_ms", Range{0, 10'000}, c.feedback.fade_s * 1e3) * 1e-3;
+  c.feedback.hands_off_fade_s =
+      f.get_double("hands_off_fade_ms", Range{0, 10'000}, c.feedback.hands_off_fade_s * 1e3) * 1e-3;
+  c.hands_off.speed_mps = f.get_bound_or_off("hands_off_speed_mps", Range{0.01, 10}, c.hands_off.speed_mps);
+  c.hands_off.resume_s = f.get_double("hands_off_resume_ms", Range{0, 60'000}, c.hands_off.resume_s * 1e3) * 1e-3;
+  if (std::isfinite(c.hands_off.speed_mps) && c.arm_model.empty() && !c.device->cartesian() && !s.has("arms")) {
+    throw f.error("hands_off_speed_mps", "needs the device's flange speed: give leader.arm_model");
+  }
 }
 
 }  // namespace

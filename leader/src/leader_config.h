@@ -13,6 +13,7 @@
 #include "teleop/common/config.h"
 #include "teleop/common/joint_model.h"
 #include "feedback_renderer.h"
+#include "hands_off_guard.h"
 #include "hand_plan.h"
 #include "joint_trajectory.h"
 #include "operator_motion.h"
@@ -75,6 +76,8 @@ struct LeaderConfig {
   /// false: nothing is rendered (the architecture's feedback is still computed and traced).
   bool feedback_enabled = true;
   FeedbackConfig feedback;
+  /// `feedback.hands_off_speed_mps`, `hands_off_resume_ms`: the device counts as let go when faster.
+  HandsOffConfig hands_off;
   /// Scaling from the device to the follower's command (joint angles or positions).
   double workspace_scale = 1.0;
   /// `leader.workspace_box_m: {min: [x, y, z], max: [x, y, z]}`: where the Cartesian command may go.

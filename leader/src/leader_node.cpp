@@ -36,7 +36,8 @@ LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context
       motion_(config.motion),
       clutch_(config.joints, config.workspace_scale),
       cartesian_(config.workspace_scale),
-      renderer_(config.joints, config.feedback, context.node.rate_hz) {
+      renderer_(config.joints, config.feedback, context.node.rate_hz),
+      hands_off_(config.hands_off) {
   const size_t n = config.joints;
   device_impl_ = config.device->make({period_s_, n, config.home_rad, config.arm_model});
   // a Cartesian device has no joints: its pose is mapped as it is (architectures that need
@@ -144,6 +145,7 @@ bool LeaderNode::move_device(double t_s) {
   // the simulated operator's intent moves a simulated device; a real one is held by a person
   motion_.sample(t_s, intent_.q_rad, intent_.dq_radps);
   motion_.intended_torque(t_s, intent_.tau_nm);
+  intent_.hand_on = motion_.holding(t_s);
   device_impl_->set_operator_intent(intent_);
   // the buttons held in this cycle, whatever a device that has none leaves in the word
   device_.buttons = 0;
@@ -156,10 +158,14 @@ bool LeaderNode::move_device(double t_s) {
   return read;
 }
 
-bool LeaderNode::held_by_buttons() const {
-  const auto pressed = [&](int button) { return (device_.buttons >> button & 1u) != 0; };
-  const StopButtons& b = config_.stop_buttons;
-  return (b.dead_man >= 0 && !pressed(b.dead_man)) || (b.clutch >= 0 && pressed(b.clutch));
+bool LeaderNode::dead_man_released() const {
+  const int b = config_.stop_buttons.dead_man;
+  return b >= 0 && (device_.buttons >> b & 1u) == 0;
+}
+
+bool LeaderNode::clutch_held() const {
+  const int b = config_.stop_buttons.clutch;
+  return b >= 0 && (device_.buttons >> b & 1u) != 0;
 }
 
 void LeaderNode::send_stop_requests(int64_t now_ns) {
@@ -192,11 +198,12 @@ void LeaderNode::send_command(bool frozen) {
   q_cmd_ = clutch_.map(device_.q_rad, frozen);
   for (size_t i = 0; i < config_.joints; ++i) dq_cmd_[i] = frozen ? 0.0 : config_.workspace_scale * device_.dq_radps[i];
   if (device_kinematics_) device_kinematics_->update(device_.q_rad, device_.dq_radps);
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
+  control::Vector6 v = control::Vector6::Zero();
+  if (device_kinematics_ || config_.device->cartesian()) device_pose(x, r, v);
+  device_speed_mps_ = v.head<3>().norm();
   if (architecture_->cartesian()) {
-    Eigen::Vector3d x;
-    Eigen::Matrix3d r;
-    control::Vector6 v;
-    device_pose(x, r, v);
     cartesian_.map(x, r, v, frozen);
     command_position_ = cartesian_.position();
   } else if (command_kinematics_) {
@@ -233,16 +240,20 @@ void LeaderNode::cycle(const CycleTick& tick) {
   device_connected_ = move_device(static_cast<double>(tick.index) * period_s_);
   send_stop_requests(tick.now_ns);
   command_hand(static_cast<double>(tick.index) * period_s_);
-  // the dead-man released or the clutch held: the command holds, the device moves freely; a
-  // device that could not be read moves nothing (update_state holds the leader from the next cycle)
-  const bool held = held_by_buttons();
-  if (held) ++cycles_held_by_buttons_;
+  // the dead-man released or the clutch held, or the device let go (faster than a hand moves it,
+  // hands_off_guard.h): the command holds, the device moves freely; a device that could not be
+  // read moves nothing (update_state holds the leader from the next cycle)
+  const bool released = dead_man_released();
+  if (released || clutch_held()) ++cycles_held_by_buttons_;
+  const bool let_go = hands_off_.update(device_speed_mps_, tick.now_ns) || released;
+  const bool held = let_go || clutch_held();
   send_command(state_ == msg::STATE_SAFE_HOLD || emergency_stopped_ || held || !device_connected_);
   const bool fresh = architecture_->feedback(mapped_device(), tick.now_ns, feedback_, rejected_feedback_);
-  // lost or stale source, the follower gone, an emergency stop, or the operator's hand off the
-  // device (its dead-man released): fade the feedback out, never cut it
+  // lost or stale source, the follower gone, an emergency stop, the clutch, or the operator's
+  // hand off the device (quicker then): fade the feedback out, never cut it
   renderer_.render(feedback_, config_.feedback_enabled && fresh && state_ == msg::STATE_RUNNING && !emergency_stopped_ &&
-                                  !held);
+                                  !held,
+                   let_go);
   if (!device_impl_->write(renderer_.output())) ++device_faults_;
   publish_device_state();
   update_trace_values();
@@ -288,6 +299,7 @@ void LeaderNode::fill_report(runtime::NodeReport& report) const {
   report.counters.emplace_back("device_faults", static_cast<double>(device_faults_));
   report.counters.emplace_back("device_lost_events", static_cast<double>(device_lost_events_));
   report.counters.emplace_back("cycles_held_by_buttons", static_cast<double>(cycles_held_by_buttons_));
+  report.counters.emplace_back("hands_off_events", static_cast<double>(hands_off_.events()));
   report.counters.emplace_back("workspace_box_saturations", static_cast<double>(cartesian_.box_saturations()));
   report.counters.emplace_back("emergency_stops_sent", static_cast<double>(stops_sent_));
   if (button_input_) report.counters.emplace_back("button_input_losses", static_cast<double>(button_input_->losses()));

@@ -19,6 +19,7 @@
 #include "cartesian_mapping.h"
 #include "clutch.h"
 #include "feedback_renderer.h"
+#include "hands_off_guard.h"
 #include "button_input.h"
 #include "leader_config.h"
 #include "operator_motion.h"
@@ -51,6 +52,8 @@ class LeaderNode final : public runtime::NodeLogic {
   /// in the follower's frame.
   const JointVector& rendered_torque() const { return renderer_.output(); }
   const Eigen::Vector3d& felt_force() const { return felt_force_; }
+  /// For tests: the device's flange (or handle) speed in the last cycle [m/s].
+  double device_speed_mps() const { return device_speed_mps_; }
 
  private:
   void poll_peers();
@@ -59,8 +62,9 @@ class LeaderNode final : public runtime::NodeLogic {
   void update_state(int64_t now_ns);
   /// Reads the device (and the button input); false when it could not be read.
   bool move_device(double t_s);
-  /// The dead-man released or the clutch held (leader.buttons): the command holds.
-  bool held_by_buttons() const;
+  /// leader.buttons: the dead-man (if any) not held; the clutch (if any) held. Either holds the command.
+  bool dead_man_released() const;
+  bool clutch_held() const;
   /// Where the Cartesian mapping starts: the device's pose now, the follower's home; the box.
   void start_cartesian();
   /// The device's flange (or, a Cartesian device, handle) pose and twist of this cycle.
@@ -99,6 +103,8 @@ class LeaderNode final : public runtime::NodeLogic {
   Clutch clutch_;
   CartesianMapping cartesian_;
   FeedbackRenderer renderer_;
+  HandsOffGuard hands_off_;
+  double device_speed_mps_ = 0.0;  // the flange's or handle's, last cycle
   Eigen::Vector3d felt_force_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d command_position_ = Eigen::Vector3d::Constant(std::nan(""));
   bool emergency_stopped_ = false;

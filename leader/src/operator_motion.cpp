@@ -38,6 +38,7 @@ void OperatorMotion::intended_torque(double t_s, JointVector& tau_nm) const {
 }
 
 uint32_t OperatorMotion::pressed_buttons(double t_s) const {
+  if (!holding(t_s)) return 0;
   uint32_t pressed = 0;
   for (const ButtonPress& p : config_.presses) {
     if (t_s >= p.at_s && t_s < p.at_s + p.hold_s) pressed |= uint32_t{1} << p.button;

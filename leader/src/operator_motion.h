@@ -6,6 +6,7 @@
 //              optionally with the torque the operator adds on purpose
 // Real-time safe.
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -35,6 +36,8 @@ struct OperatorMotionConfig {
   std::string recording_columns = "q_dev_";
   /// leader.button_presses: the buttons the operator presses, and when.
   std::vector<ButtonPress> presses;
+  /// leader.let_go_at_s: when the operator lets go of the device (hands off, no button held).
+  double let_go_at_s = std::numeric_limits<double>::infinity();
 };
 
 class OperatorMotion {
@@ -46,8 +49,10 @@ class OperatorMotion {
   /// The torque the operator adds on purpose at `t_s` (a recording's tau_op_ columns, e.g. a
   /// squeeze: a person grasps by pressing, not by aiming deeper); zero for the other kinds.
   void intended_torque(double t_s, JointVector& tau_nm) const;
-  /// The buttons the operator holds pressed at `t_s` (bit k: button k).
+  /// The buttons the operator holds pressed at `t_s` (bit k: button k); none once let go.
   uint32_t pressed_buttons(double t_s) const;
+  /// Whether the operator's hand is on the device at `t_s`.
+  bool holding(double t_s) const { return t_s < config_.let_go_at_s; }
 
  private:
   void sine(double t_s, JointVector& q_rad, JointVector& dq_radps) const;

@@ -17,6 +17,7 @@ void SimulatedHapticArm::set_operator_intent(const OperatorIntent& intent) {
     intent_target_[i] = start_q_rad_[i] + intent.q_rad[i] - config_.start_rad[i];
   }
   set_operator_target(intent_target_, intent.dq_radps, intent.tau_nm);
+  hand_on_ = intent.hand_on;
 }
 
 void SimulatedHapticArm::set_operator_target(const JointVector& q_rad, const JointVector& dq_radps,
@@ -36,8 +37,11 @@ bool SimulatedHapticArm::read(DeviceState& state) {
 
 bool SimulatedHapticArm::write(const JointVector& feedback_nm) {
   for (size_t i = 0; i < arm_.joints(); ++i) {
-    operator_nm_[i] = config_.hand_stiffness_nm_per_rad * (target_q_[i] - measured_.q_rad[i]) +
-                      config_.hand_damping_nms_per_rad * (target_dq_[i] - measured_.dq_radps[i]) + intended_nm_[i];
+    // let go, the hand holds nothing: the arm has only the feedback on it
+    operator_nm_[i] = !hand_on_ ? 0.0
+                                : config_.hand_stiffness_nm_per_rad * (target_q_[i] - measured_.q_rad[i]) +
+                                      config_.hand_damping_nms_per_rad * (target_dq_[i] - measured_.dq_radps[i]) +
+                                      intended_nm_[i];
     applied_[i] = operator_nm_[i] + feedback_nm[i];
   }
   return arm_.write(applied_) == robot::HardwareStatus::kOk;

@@ -49,6 +49,7 @@ class SimulatedHapticArm final : public LeaderDevice {
   JointVector intended_nm_{};
   JointVector operator_nm_{};
   JointVector applied_{};
+  bool hand_on_ = true;
 };
 
 }  // namespace teleop::leader

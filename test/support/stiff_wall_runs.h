@@ -32,7 +32,7 @@ inline ResultsRow run_stiff_wall(const ProcessSite& site, const std::string& exp
 /// `executable --config config`; returns the experiment's path.
 inline std::string stiff_wall_with_follower(const ProcessSite& site, const std::string& executable,
                                             const std::string& config) {
-  for (const char* run : {"position_position", "pfc", "pfc_tdpa", "mmt"}) {
+  for (const char* run : {"position_position", "pfc", "pfc_tdpa", "mmt", "pfc_tdpa_delta"}) {
     const std::string scenario = std::string("stiff_wall_") + run + ".yaml";
     std::string text = read_file(source("config/scenarios/" + scenario));
     const std::string node = "    executable: teleop_follower\n    config: follower\n";

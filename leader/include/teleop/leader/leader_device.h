@@ -35,6 +35,8 @@ struct OperatorIntent {
   JointVector q_rad{};
   JointVector dq_radps{};
   JointVector tau_nm{};
+  /// The operator's hand is on the device (leader.let_go_at_s: not from then on).
+  bool hand_on = true;
 };
 
 class LeaderDevice {
