@@ -61,7 +61,15 @@ TEST(Versions, ANodeOfAnotherReleaseStopsThePairNamingBothVersionsUntilItIsGoneA
   ProcessSite site;
   RunningProcess follower(site.args("follower", source("config/nodes/follower.yaml"), "follower"));
   ASSERT_TRUE(follower.wait_for_output("starting", 20s)) << follower.output();
-  RunningProcess leader(site.args("leader", source("config/nodes/leader.yaml"), "leader"));
+  // the shipped operator, slowly and clear of the wall: where the shipped sine presses the wall,
+  // resuming after the stop in another phase of it tripped the follower's contact reflex (a
+  // loaded host), and versions are the subject here
+  RunningProcess leader(site.args("leader",
+                                  config_copy(site.dir, "leader.yaml",
+                                              {{"amplitudes_rad: [0.0, 0.2, 0.0, 0.2, 0.0, 0.0, 0.0]",
+                                                "amplitudes_rad: [0.0, 0.0, 0.0, 0.0, 0.3, 0.0, 0.3]"},
+                                               {"frequency_hz: 0.5", "frequency_hz: 0.1"}}),
+                                  "leader"));
   ASSERT_TRUE(leader.wait_for_output("in command (its commands", 60s)) << leader.output() << follower.output();
   OtherRelease other(site.domain);
   other.talk_for(1500ms);
@@ -98,7 +106,7 @@ TEST(Versions, ANodeOfAnotherReleaseStopsThePairNamingBothVersionsUntilItIsGoneA
     EXPECT_EQ(counter(*r, "emergency_stop_enables"), 1.0) << r->name;
     EXPECT_EQ(counter(*r, "emergency_stop_engaged"), 0.0) << r->name;
   }
-  EXPECT_EQ(counter(l, "in_command"), 1.0) << "the pair runs again";
+  EXPECT_EQ(counter(l, "in_command"), 1.0) << "the pair runs again\n" << leader.output() << follower.output();
 }
 
 }  // namespace
