@@ -30,11 +30,7 @@ std::optional<ButtonInputConfig> parse_button_input(const ConfigNode& leader_sec
 
 ButtonInput::ButtonInput(ButtonInputConfig config, uint32_t lost_word)
     : EvdevReader(config.device, "leader.button_input"), config_(std::move(config)), lost_word_(lost_word) {
-  for (const auto& [code, button] : config_.keys) {
-    if (libevdev_has_event_code(device(), EV_KEY, code) == 0) {
-      refuse(std::string("has no key ") + libevdev_event_code_get_name(EV_KEY, code));
-    }
-  }
+  for (const auto& [code, button] : config_.keys) require(EV_KEY, code, "key");
   start();
 }
 

@@ -75,6 +75,12 @@ void EvdevReader::refuse(const std::string& problem) {
   throw std::runtime_error(what_ + ": " + description_ + " " + problem);
 }
 
+void EvdevReader::require(unsigned type, unsigned code, const char* kind) {
+  if (libevdev_has_event_code(device_, type, code) == 0) {
+    refuse(std::string("has no ") + kind + " " + libevdev_event_code_get_name(type, code));
+  }
+}
+
 bool EvdevReader::open_device() {
   std::vector<std::string> candidates;
   if (is_path(device_spec_)) {

@@ -42,10 +42,11 @@ class EvdevReader {
   void stop();
   /// Starts the thread: a subclass calls it last in its constructor, after its checks.
   void start();
-  /// The open device, for a subclass's checks at setup (before start()).
-  const libevdev* device() const { return device_; }
   /// Throws std::runtime_error naming the device and `problem`, and closes it. Setup time.
   [[noreturn]] void refuse(const std::string& problem);
+  /// Refuses the device unless it reports `code` of `type` ("has no key BTN_5"; `kind`: "key",
+  /// "axis"). Setup time.
+  void require(unsigned type, unsigned code, const char* kind);
 
   /// Each event read, in order (not those of a resynchronisation). On the reader's thread.
   virtual void on_event(const input_event& event) { (void)event; }
@@ -54,14 +55,13 @@ class EvdevReader {
   /// The device went away; it is looked for again twice a second.
   virtual void on_lost() = 0;
 
-  std::string what_;
-
  private:
   bool open_device();
   void close_device();
   void run();
   void drain();
 
+  std::string what_;
   std::string device_spec_;
   int fd_ = -1;
   libevdev* device_ = nullptr;

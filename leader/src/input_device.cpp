@@ -17,16 +17,8 @@ class AxisInput final : public EvdevReader {
   static constexpr size_t kMaxAxes = 16;
 
   explicit AxisInput(const InputDeviceConfig& config) : EvdevReader(config.device, "leader." + config.kind), config_(config) {
-    for (const InputAxis& a : config_.axes) {
-      if (libevdev_has_event_code(device(), a.type, a.code) == 0) {
-        refuse(std::string("has no axis ") + libevdev_event_code_get_name(a.type, a.code));
-      }
-    }
-    for (const auto& [code, button] : config_.keys) {
-      if (libevdev_has_event_code(device(), EV_KEY, code) == 0) {
-        refuse(std::string("has no key ") + libevdev_event_code_get_name(EV_KEY, code));
-      }
-    }
+    for (const InputAxis& a : config_.axes) require(a.type, a.code, "axis");
+    for (const auto& [code, button] : config_.keys) require(EV_KEY, code, "key");
     start();
   }
   ~AxisInput() override { stop(); }

@@ -12,6 +12,7 @@
 #include "leader_node.h"
 #include "following_peer.h"
 #include "node_harness.h"
+#include "report_counter.h"
 #include "teleop/leader/simulated_devices.h"
 
 namespace teleop::leader {
@@ -151,13 +152,7 @@ TEST_F(CartesianDeviceTest, AnUnpluggedDeviceHoldsTheLeaderUntilItIsBack) {
   EXPECT_TRUE(follower.target().isApprox(home, 1e-9)) << "back where it was told to stop, no jump";
   runtime::NodeReport report;
   node.fill_report(report);
-  const auto counter = [&](const std::string& name) {
-    for (const auto& [n, v] : report.counters) {
-      if (n == name) return v;
-    }
-    return -1.0;
-  };
-  EXPECT_EQ(counter("device_lost_events"), 1.0);
+  EXPECT_EQ(test::counter(report, "device_lost_events"), 1.0);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "leader_config.h"
 #include "leader_node.h"
 #include "node_harness.h"
+#include "report_counter.h"
 
 namespace teleop::leader {
 namespace {
@@ -68,9 +69,7 @@ LetGo let_go(const std::string& device_keys, const std::string& feedback_keys) {
   }
   runtime::NodeReport report;
   node.fill_report(report);
-  for (const auto& [name, value] : report.counters) {
-    if (name == "hands_off_events") seen.hands_off_events = value;
-  }
+  seen.hands_off_events = test::counter(report, "hands_off_events");
   seen.rendered_at_end = std::abs(node.rendered_torque()[0]) + std::abs(node.rendered_torque()[1]) +
                          std::abs(node.rendered_torque()[2]);
   return seen;
