@@ -23,6 +23,8 @@ class ArmKinematics {
   const Eigen::Matrix3d& rotation() const { return dynamics_.ee_rotation(); }
   /// Linear then angular velocity of the end effector (base frame).
   const control::Vector6& twist() const { return twist_; }
+  /// g(q): the joint torques that carry the arm's own weight.
+  const control::JointVector& gravity() const { return dynamics_.gravity(); }
   /// tau = J^T wrench: the joint torques that exert `wrench` (force, moment) at the end effector.
   void torque_for_wrench(const control::Vector6& wrench, JointVector& tau_nm) const;
   /// The wrench that joint torques `tau_nm` exert at the end effector (damped least squares).

@@ -1,5 +1,6 @@
 #include "teleop/leader/builtin_devices.h"
 
+#include "builtin_robot_arm.h"
 #include "plugin_device.h"
 #include "teleop/leader/input_devices.h"
 #include "teleop/leader/simulated_devices.h"
@@ -10,6 +11,7 @@ void add_builtin_devices(DeviceRegistry& registry) {
   add_simulated_devices(registry);
   add_input_devices(registry);
   registry.add("plugin", parse_plugin_device);
+  add_builtin_robot_arm(registry);
 }
 
 const DeviceRegistry& builtin_devices() {

@@ -39,7 +39,7 @@ LeaderNode::LeaderNode(const LeaderConfig& config, runtime::NodeContext& context
       renderer_(config.joints, config.feedback, context.node.rate_hz),
       hands_off_(config.hands_off) {
   const size_t n = config.joints;
-  device_impl_ = config.device->make({period_s_, n, config.home_rad, config.arm_model});
+  device_impl_ = config.device->make({period_s_, n, config.home_rad, config.arm_model, config.ee_site});
   // a Cartesian device has no joints: its pose is mapped as it is (architectures that need
   // joints refuse it with the configuration)
   if (!config.device->cartesian() && device_impl_->joints() != n) {
@@ -298,6 +298,7 @@ void LeaderNode::fill_report(runtime::NodeReport& report) const {
   report.counters.emplace_back("in_command", authority_->in_command() ? 1.0 : 0.0);
   report.counters.emplace_back("device_faults", static_cast<double>(device_faults_));
   report.counters.emplace_back("device_lost_events", static_cast<double>(device_lost_events_));
+  device_impl_->report_counters(report.counters);
   report.counters.emplace_back("cycles_held_by_buttons", static_cast<double>(cycles_held_by_buttons_));
   report.counters.emplace_back("hands_off_events", static_cast<double>(hands_off_.events()));
   report.counters.emplace_back("workspace_box_saturations", static_cast<double>(cartesian_.box_saturations()));

@@ -128,4 +128,11 @@ bool PluginDevice::write(const JointVector& feedback_nm) {
   return true;
 }
 
+void PluginDevice::report_counters(std::vector<std::pair<std::string, double>>& counters) const {
+  counters.emplace_back("plugin_failed_reads", static_cast<double>(failed_reads_));
+  counters.emplace_back("plugin_invalid_reads", static_cast<double>(invalid_reads_));
+  counters.emplace_back("plugin_failed_writes", static_cast<double>(failed_writes_));
+  counters.emplace_back("plugin_limited_efforts", static_cast<double>(limited_efforts_));
+}
+
 }  // namespace teleop::leader

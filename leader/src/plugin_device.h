@@ -61,6 +61,8 @@ class PluginDevice final : public LeaderDevice {
   /// force, then moment), each within the device's limit. Real-time safe.
   [[nodiscard]] bool write(const JointVector& feedback_nm) override;
   const char* name() const override { return info_.name; }
+  /// plugin_failed_reads, plugin_invalid_reads, plugin_failed_writes, plugin_limited_efforts.
+  void report_counters(std::vector<std::pair<std::string, double>>& counters) const override;
 
   uint64_t failed_reads() const { return failed_reads_; }
   uint64_t invalid_reads() const { return invalid_reads_; }

@@ -15,6 +15,7 @@
 #include "leader_config.h"
 #include "leader_node.h"
 #include "node_harness.h"
+#include "report_counter.h"
 #include "test_helpers.h"
 
 namespace teleop::leader {
@@ -145,6 +146,10 @@ TEST(PluginDevice, TheLeaderCommandsFromThePluginRendersOnItAndHoldsWhenItFails)
   std::vector<uint32_t> faults;
   node.active_faults(faults);
   EXPECT_EQ(faults, std::vector<uint32_t>{msg::FAULT_HARDWARE});
+  runtime::NodeReport report;
+  node.fill_report(report);
+  EXPECT_GE(test::counter(report, "plugin_failed_reads"), 1.0) << "the plugin's own counters in the node's report";
+  EXPECT_EQ(test::counter(report, "plugin_invalid_reads"), 0.0);
 }
 
 }  // namespace

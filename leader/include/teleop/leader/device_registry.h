@@ -25,6 +25,8 @@ struct DeviceSetup {
   JointVector home_rad{};
   /// The arm class's model file (leader.arm_model, or the hand's model in leader.arms); "" if none.
   std::string arm_model;
+  /// The end-effector site of that model (leader.ee_site).
+  std::string ee_site = "ee_site";
 };
 
 /// A device's settings, read from the `leader:` section while the configuration is read (before

@@ -8,6 +8,9 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "teleop/common/joint_model.h"
 
@@ -52,6 +55,9 @@ class LeaderDevice {
   /// Renders `feedback_nm` for the next period. Real-time safe. False when refused.
   [[nodiscard]] virtual bool write(const JointVector& feedback_nm) = 0;
   virtual const char* name() const = 0;
+  /// Adds the device's own counters (reads refused, efforts clamped) to the leader's report.
+  /// After the loop.
+  virtual void report_counters(std::vector<std::pair<std::string, double>>& counters) const { (void)counters; }
 };
 
 }  // namespace teleop::leader

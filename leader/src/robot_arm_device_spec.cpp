@@ -1,0 +1,53 @@
+#include <limits>
+#include <memory>
+#include <utility>
+
+#include "robot_arm_device.h"
+#include "teleop/common/joint_config.h"
+#include "teleop/leader/arm_devices.h"
+#include "teleop/sim/model_config.h"
+
+namespace teleop::leader {
+namespace {
+
+class RobotArmSpec final : public DeviceSpec {
+ public:
+  RobotArmSpec(std::shared_ptr<const robot::HardwareSpec> hardware, std::string gravity_model,
+               const JointVector& max_torque_nm)
+      : hardware_(std::move(hardware)), gravity_model_(std::move(gravity_model)), max_torque_nm_(max_torque_nm) {}
+  const char* device() const override { return "robot_arm"; }
+  std::unique_ptr<LeaderDevice> make(const DeviceSetup& setup) const override {
+    std::unique_ptr<robot::RobotHardware> arm = hardware_->make(setup.period_s);
+    std::unique_ptr<ArmKinematics> gravity;
+    if (!arm->compensates_gravity()) {
+      const std::string& model = gravity_model_.empty() ? setup.arm_model : gravity_model_;
+      if (model.empty()) {
+        throw std::runtime_error("leader.robot_arm: the " + std::string(hardware_->backend()) +
+                                 " arm does not carry its own weight, and neither leader.robot_arm.gravity_model nor "
+                                 "leader.arm_model names its model");
+      }
+      gravity = std::make_unique<ArmKinematics>(model, setup.ee_site);
+    }
+    return std::make_unique<RobotArmDevice>(std::move(arm), std::move(gravity), max_torque_nm_);
+  }
+
+ private:
+  std::shared_ptr<const robot::HardwareSpec> hardware_;
+  std::string gravity_model_;
+  JointVector max_torque_nm_;
+};
+
+}  // namespace
+
+void add_robot_arm_device(DeviceRegistry& registry, const robot::HardwareRegistry& robots) {
+  registry.add("robot_arm", [robots](const ConfigNode& s) -> std::shared_ptr<const DeviceSpec> {
+    const ConfigNode arm = s.child("robot_arm");
+    std::shared_ptr<const robot::HardwareSpec> hardware = robots.parse(arm);
+    const std::string gravity_model = arm.has("gravity_model") ? sim::get_model_path(arm, "gravity_model") : "";
+    const JointVector max_torque_nm = read_joint_list(arm, "max_torque_nm", read_joint_count(s), Range{0, 1e4},
+                                                      std::numeric_limits<double>::infinity());
+    return std::make_shared<RobotArmSpec>(std::move(hardware), gravity_model, max_torque_nm);
+  });
+}
+
+}  // namespace teleop::leader
