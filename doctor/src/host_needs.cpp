@@ -19,19 +19,26 @@ void add_can(HostNeeds& needs, CanNeed need) {
   if (!known) needs.can.push_back(std::move(need));
 }
 
-// the CAN buses of the two nodes that have them: the hand's, and a follower on CiA 402 drives
+// a robot's section (`hardware: canopen`, its drives on CAN buses)
+void add_drive_buses(HostNeeds& needs, const ConfigNode& section, const ConfigNode& root, const std::string& node) {
+  if (section.get_string("hardware", "mujoco") != "canopen") return;
+  const auto spec = robot::parse_canopen_hardware(section);
+  for (const robot::CanopenJointConfig& joint : spec->config().joints) {
+    add_can(needs, {joint.bus, spec->config().bitrate_bps, node, root.file()});
+  }
+}
+
+// the CAN buses of the nodes that have them: the hand's, a follower on CiA 402 drives, and a
+// leader whose master arm is one (leader.device: robot_arm)
 void add_can_buses(HostNeeds& needs, const ConfigNode& root, const std::string& node) {
   if (root.has("hand")) {
     const hand::HandNodeConfig hand = hand::parse_hand_config(root);
     add_can(needs, {hand.interface, hand.adapter.bitrate_bps, node, root.file()});
   }
-  if (root.has("follower")) {
-    const ConfigNode follower = root.child("follower");
-    if (follower.get_string("hardware", "mujoco") != "canopen") return;
-    const auto spec = robot::parse_canopen_hardware(follower);
-    for (const robot::CanopenJointConfig& joint : spec->config().joints) {
-      add_can(needs, {joint.bus, spec->config().bitrate_bps, node, root.file()});
-    }
+  if (root.has("follower")) add_drive_buses(needs, root.child("follower"), root, node);
+  if (root.has("leader")) {
+    const ConfigNode leader = root.child("leader");
+    if (leader.get_string("device", "") == "robot_arm") add_drive_buses(needs, leader.child("robot_arm"), root, node);
   }
 }
 

@@ -31,7 +31,7 @@ void ArmDrivePlants::step() {
   for (size_t k = 0; k < channels_.size(); ++k) {
     Channel& c = channels_[k];
     const double mean_nm = c.mean_torque_nm();
-    torque_nm_[k] = c.jammed() ? 0.0 : (c.mounting_.inverted ? -mean_nm : mean_nm);
+    torque_nm_[k] = (c.jammed() ? 0.0 : (c.mounting_.inverted ? -mean_nm : mean_nm)) + external_nm_[k];
     if (c.jammed() && !c.held_) c.held_q_rad_ = state_.q_rad[k];
     c.held_ = c.jammed();
   }

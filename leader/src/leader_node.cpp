@@ -254,7 +254,8 @@ void LeaderNode::cycle(const CycleTick& tick) {
   renderer_.render(feedback_, config_.feedback_enabled && fresh && state_ == msg::STATE_RUNNING && !emergency_stopped_ &&
                                   !held,
                    let_go);
-  if (!device_impl_->write(renderer_.output())) ++device_faults_;
+  device_refused_ = !device_impl_->write(renderer_.output());
+  if (device_refused_) ++device_faults_;
   publish_device_state();
   update_trace_values();
 }
@@ -281,7 +282,8 @@ void LeaderNode::active_faults(std::vector<uint32_t>& faults) const {
   if (state_ == msg::STATE_SAFE_HOLD && device_connected_) {
     faults.push_back(fresh ? msg::FAULT_NOT_IN_COMMAND : msg::FAULT_PEER_LOST);
   }
-  if (device_faults_ > 0) faults.push_back(msg::FAULT_HARDWARE);
+  // the device as it is now: one that came back (a master arm's first state late, a replug) is no fault
+  if (!device_connected_ || device_refused_) faults.push_back(msg::FAULT_HARDWARE);
 }
 
 void LeaderNode::fill_report(runtime::NodeReport& report) const {

@@ -109,6 +109,7 @@ class LeaderNode final : public runtime::NodeLogic {
   Eigen::Vector3d command_position_ = Eigen::Vector3d::Constant(std::nan(""));
   bool emergency_stopped_ = false;
   bool device_connected_ = true;  // the device's last read succeeded
+  bool device_refused_ = false;   // the device refused the last write
   uint64_t device_lost_events_ = 0;
   uint64_t cycles_held_by_buttons_ = 0;
   uint32_t buttons_before_ = 0;  // the device's buttons in the last cycle

@@ -7,8 +7,11 @@
 namespace teleop::leader {
 
 RobotArmDevice::RobotArmDevice(std::unique_ptr<robot::RobotHardware> arm, std::unique_ptr<ArmKinematics> gravity,
-                               const JointVector& max_torque_nm)
-    : arm_(std::move(arm)), gravity_(std::move(gravity)), name_(std::string("robot_arm:") + arm_->name()) {
+                               const JointVector& max_torque_nm, const JointVector& damping_nms_per_rad)
+    : arm_(std::move(arm)),
+      gravity_(std::move(gravity)),
+      name_(std::string("robot_arm:") + arm_->name()),
+      damping_(damping_nms_per_rad) {
   if (!arm_->compensates_gravity() && !gravity_) {
     throw std::invalid_argument(std::string("the arm ") + arm_->name() +
                                 " does not carry its own weight: the device needs its model for g(q)");
@@ -41,7 +44,7 @@ bool RobotArmDevice::write(const JointVector& feedback_nm) {
   bool clamped = false;
   for (size_t k = 0; k < arm_->joints(); ++k) {
     const double weight = gravity_ ? gravity_->gravity()[static_cast<Eigen::Index>(k)] : 0.0;
-    const double wanted = (std::isfinite(feedback_nm[k]) ? feedback_nm[k] : 0.0) + weight;
+    const double wanted = (std::isfinite(feedback_nm[k]) ? feedback_nm[k] : 0.0) + weight - damping_[k] * state_.dq_radps[k];
     torque_nm_[k] = std::clamp(wanted, -limit_nm_[k], limit_nm_[k]);
     clamped = clamped || torque_nm_[k] != wanted;
   }

@@ -22,15 +22,15 @@ namespace teleop::leader {
 class RobotArmDevice final : public LeaderDevice {
  public:
   /// `gravity`: the arm's model, given for (and only for) a robot that does not compensate gravity
-  /// itself (throws std::invalid_argument when it is missing). `max_torque_nm`: the device's own bound per
-  /// joint, within the robot's.
+  /// itself (throws std::invalid_argument when it is missing). `max_torque_nm`: the device's own
+  /// bound per joint, within the robot's; `damping_nms_per_rad`: a viscous damping it renders.
   RobotArmDevice(std::unique_ptr<robot::RobotHardware> arm, std::unique_ptr<ArmKinematics> gravity,
-                 const JointVector& max_torque_nm);
+                 const JointVector& max_torque_nm, const JointVector& damping_nms_per_rad);
 
   size_t joints() const override { return arm_->joints(); }
   /// The joints, and the external torque the robot reports as the operator's. Real-time safe.
   [[nodiscard]] bool read(DeviceState& state) override;
-  /// feedback + g(q), clamped; or the robot's own hold while its state is not current.
+  /// feedback + g(q) - damping dq, clamped; or the robot's own hold while its state is not current.
   /// Real-time safe.
   [[nodiscard]] bool write(const JointVector& feedback_nm) override;
   const char* name() const override { return name_.c_str(); }
@@ -42,6 +42,7 @@ class RobotArmDevice final : public LeaderDevice {
   std::unique_ptr<ArmKinematics> gravity_;
   std::string name_;
   JointVector limit_nm_{};
+  JointVector damping_{};
   robot::ArmState state_{};
   JointVector torque_nm_{};
   bool current_ = false;

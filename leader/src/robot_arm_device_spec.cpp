@@ -13,8 +13,11 @@ namespace {
 class RobotArmSpec final : public DeviceSpec {
  public:
   RobotArmSpec(std::shared_ptr<const robot::HardwareSpec> hardware, std::string gravity_model,
-               const JointVector& max_torque_nm)
-      : hardware_(std::move(hardware)), gravity_model_(std::move(gravity_model)), max_torque_nm_(max_torque_nm) {}
+               const JointVector& max_torque_nm, const JointVector& damping_nms_per_rad)
+      : hardware_(std::move(hardware)),
+        gravity_model_(std::move(gravity_model)),
+        max_torque_nm_(max_torque_nm),
+        damping_nms_per_rad_(damping_nms_per_rad) {}
   const char* device() const override { return "robot_arm"; }
   std::unique_ptr<LeaderDevice> make(const DeviceSetup& setup) const override {
     std::unique_ptr<robot::RobotHardware> arm = hardware_->make(setup.period_s);
@@ -28,13 +31,14 @@ class RobotArmSpec final : public DeviceSpec {
       }
       gravity = std::make_unique<ArmKinematics>(model, setup.ee_site);
     }
-    return std::make_unique<RobotArmDevice>(std::move(arm), std::move(gravity), max_torque_nm_);
+    return std::make_unique<RobotArmDevice>(std::move(arm), std::move(gravity), max_torque_nm_, damping_nms_per_rad_);
   }
 
  private:
   std::shared_ptr<const robot::HardwareSpec> hardware_;
   std::string gravity_model_;
   JointVector max_torque_nm_;
+  JointVector damping_nms_per_rad_;
 };
 
 }  // namespace
@@ -44,9 +48,11 @@ void add_robot_arm_device(DeviceRegistry& registry, const robot::HardwareRegistr
     const ConfigNode arm = s.child("robot_arm");
     std::shared_ptr<const robot::HardwareSpec> hardware = robots.parse(arm);
     const std::string gravity_model = arm.has("gravity_model") ? sim::get_model_path(arm, "gravity_model") : "";
-    const JointVector max_torque_nm = read_joint_list(arm, "max_torque_nm", read_joint_count(s), Range{0, 1e4},
-                                                      std::numeric_limits<double>::infinity());
-    return std::make_shared<RobotArmSpec>(std::move(hardware), gravity_model, max_torque_nm);
+    const size_t joints = read_joint_count(s);
+    const JointVector max_torque_nm =
+        read_joint_list(arm, "max_torque_nm", joints, Range{0, 1e4}, std::numeric_limits<double>::infinity());
+    const JointVector damping = read_joint_list(arm, "damping_nms_per_rad", joints, Range{0, 1e3}, 0.0);
+    return std::make_shared<RobotArmSpec>(std::move(hardware), gravity_model, max_torque_nm, damping);
   });
 }
 

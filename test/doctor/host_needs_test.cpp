@@ -28,6 +28,14 @@ TEST(DoctorNeeds, AnArmOfDrivesNeedsEachOfItsBusesOnce) {
   EXPECT_TRUE(needs.dds[0].multicast_discovery);
 }
 
+TEST(DoctorNeeds, ALeadersMasterArmOfDrivesNeedsItsBusesToo) {
+  const HostNeeds needs = needs_of({test::source("config/nodes/leader_canopen_arm.yaml")});
+  std::vector<std::string> buses;
+  for (const CanNeed& c : needs.can) buses.push_back(c.interface + " " + c.node);
+  EXPECT_EQ(buses, (std::vector<std::string>{"can0 leader", "can1 leader", "can2 leader", "can3 leader"}));
+  EXPECT_TRUE(needs_of({test::source("config/nodes/leader_haptic_arm.yaml")}).can.empty()) << "a simulated device";
+}
+
 TEST(DoctorNeeds, AScenarioAddsItsNodesWithTheirOverrides) {
   const std::string dir = test::make_temp_dir();
   const std::string follower = test::config_copy(dir, "follower.yaml", {});

@@ -9,9 +9,12 @@
 namespace teleop::emulator::test {
 namespace {
 
+// the arm steps by at most 1 ms whatever the master's period, as teleop_arm_emulator's does
+double plant_step_s(double period_s) { return std::min(period_s, 1e-3); }
+
 robot::MujocoHardwareConfig without_gravity_compensation(robot::MujocoHardwareConfig plant, double period_s) {
   plant.gravity_compensated = false;
-  plant.period_s = period_s;
+  plant.period_s = plant_step_s(period_s);
   return plant;
 }
 
@@ -47,7 +50,7 @@ EmulatedCanArm::EmulatedCanArm(const robot::CanopenHardwareConfig& drives, robot
     endpoints_.push_back(buses_[b]->open("drive " + std::to_string(j.node)));
     drive_ends.push_back(endpoints_.back().get());
   }
-  emulated_ = std::make_unique<EmulatedArm>(plant_, period_s, drives, drive_ends);
+  emulated_ = std::make_unique<EmulatedArm>(plant_, plant_step_s(period_s), drives, drive_ends);
   emulated_->step(period_s);  // powered on
   robot::SdoWait wait;
   wait.poll = std::chrono::nanoseconds(static_cast<int64_t>(period_s * 1e9));

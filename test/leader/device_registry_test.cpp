@@ -23,6 +23,7 @@ struct Record {
   DeviceSetup setup;
   int reads = 0;
   int writes = 0;
+  int failing_reads = 0;  // the first reads that fail (a master arm's first state late)
   JointVector intent_q_rad{};
 };
 
@@ -34,7 +35,7 @@ class RecordingDevice final : public LeaderDevice {
   size_t joints() const override { return record_->setup.joints; }
   void set_operator_intent(const OperatorIntent& intent) override { record_->intent_q_rad = intent.q_rad; }
   bool read(DeviceState& state) override {
-    ++record_->reads;
+    if (++record_->reads <= record_->failing_reads) return false;
     state.q_rad = pose_rad_;
     state.dq_radps.fill(0.0);
     return true;
@@ -164,6 +165,29 @@ TEST(DeviceRegistry, TheLeaderDrivesADeviceTheTestRegistered) {
   const auto q_dev_1 = std::find(columns.begin(), columns.end(), "q_dev_1");
   ASSERT_NE(q_dev_1, columns.end());
   EXPECT_EQ(row[static_cast<size_t>(q_dev_1 - columns.begin())], -0.5);
+}
+
+// a device that cannot be read at first (a master arm whose drives have not answered a SYNC yet)
+// is a hardware fault while it cannot, not after it reads
+TEST(DeviceRegistry, ADeviceIsAHardwareFaultWhileItCannotBeReadNotOnceItReads) {
+  auto record = std::make_shared<Record>();
+  record->failing_reads = 3;
+  const DeviceRegistry devices = devices_with_recording(record);
+  const ConfigNode root = ConfigNode::load_string(
+      "teleoperation: {architecture: position_position}\nleader:\n  joints: 2\n  device: recording\n"
+      "  recording: {gain: 1.0, pose_rad: [0.25, -0.5]}\n  feedback: {enabled: true}\n",
+      "leader.yaml");
+  test::NodeHarness harness{"leader"};
+  const std::unique_ptr<runtime::NodeLogic> node = leader_logic_parser(devices)(root)(harness.context);
+  const auto hardware_fault = [&] {
+    std::vector<uint32_t> faults;
+    node->active_faults(faults);
+    return std::find(faults.begin(), faults.end(), msg::FAULT_HARDWARE) != faults.end();
+  };
+  node->cycle(harness.tick());
+  EXPECT_TRUE(hardware_fault()) << "its second read failed";
+  for (int i = 0; i < 3; ++i) node->cycle(harness.tick());
+  EXPECT_FALSE(hardware_fault()) << "it reads now";
 }
 
 }  // namespace

@@ -165,6 +165,7 @@ class StaleRobot final : public robot::RobotHardware {
   size_t joints() const override { return 7; }
   robot::HardwareStatus read(robot::ArmState& state) override {
     state.q_rad[0] = 0.5;
+    state.dq_radps[3] = 0.25;
     return status;
   }
   robot::HardwareStatus write(const JointVector& tau_nm) override {
@@ -190,12 +191,14 @@ class StaleRobot final : public robot::RobotHardware {
   int holds = 0;
 };
 
-TEST(RobotArmDevice, AStateThatIsNotCurrentIsALostDeviceHeldByTheRobotsOwnMeans) {
+TEST(RobotArmDevice, AStateThatIsNotCurrentIsALostDeviceHeldByTheRobotsOwnMeansAndTheRestIsRendered) {
   auto owned = std::make_unique<StaleRobot>();
   StaleRobot& robot = *owned;
   JointVector bound{};
   bound.fill(std::numeric_limits<double>::infinity());
-  RobotArmDevice device(std::move(owned), nullptr, bound);
+  JointVector damping{};
+  damping[3] = 2.0;
+  RobotArmDevice device(std::move(owned), nullptr, bound, damping);
   DeviceState state;
   JointVector feedback{};
   feedback[0] = 3.0;
@@ -214,6 +217,7 @@ TEST(RobotArmDevice, AStateThatIsNotCurrentIsALostDeviceHeldByTheRobotsOwnMeans)
   EXPECT_EQ(robot.last_nm[0], 3.0) << "a robot carrying its weight itself gets the feedback alone";
   EXPECT_EQ(robot.last_nm[1], 0.0) << "not finite: nothing";
   EXPECT_EQ(robot.last_nm[2], 10.0) << "the robot's own limit";
+  EXPECT_EQ(robot.last_nm[3], -0.5) << "the damping rendered against the joint's motion";
   EXPECT_EQ(counter(device, "arm_stale_reads"), 1.0);
   EXPECT_EQ(counter(device, "arm_fault_reads"), 1.0);
   EXPECT_EQ(counter(device, "arm_holds"), 1.0);

@@ -35,6 +35,9 @@ class ArmDrivePlants final : public drive::SharedDrivePlant {
   double step_s() const override { return step_s_; }
   void step() override;
 
+  /// A torque on the joints from outside the drives (an operator's hand on an arm used as a
+  /// haptic master), added to theirs at every step from the next on. Real-time safe.
+  void set_external_torque(const JointVector& tau_nm) { external_nm_ = tau_nm; }
   /// The arm's state after the last step, as the simulation has it (joint side).
   const robot::ArmState& state() const { return state_; }
   /// Steps whose write the arm refused (a non-finite torque).
@@ -55,6 +58,7 @@ class ArmDrivePlants final : public drive::SharedDrivePlant {
   std::vector<Channel> channels_;
   robot::ArmState state_;
   JointVector torque_nm_{};
+  JointVector external_nm_{};
   JointVector held_q_rad_{};  // the braked joints' angles, placed together after each step
   std::array<bool, kMaxJoints> held_{};
   uint64_t refused_ = 0;

@@ -41,6 +41,7 @@ class EmulatedArm {
   drive::DriveGroup& drives() { return *group_; }
   const drive::DriveGroup& drives() const { return *group_; }
   const ArmDrivePlants& plant() const { return plant_; }
+  ArmDrivePlants& plant() { return plant_; }
 
  private:
   ArmDrivePlants plant_;
