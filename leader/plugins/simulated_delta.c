@@ -11,8 +11,9 @@
  * Settings (leader.plugin.settings): mass_kg, hand_stiffness_n_per_m, hand_damping_ns_per_m,
  * friction_ns_per_m, reach_{x,y,z}_m, ramp_s, amplitude_{x,y,z}_m, frequency_hz, half_side_m,
  * max_force_n, buttons, let_go_at_s; and to test the leader's handling of a failing device:
- * fail_after_reads, nan_after_reads. */
+ * fail_after_reads, nan_after_reads, and crash_after_reads (a vendor SDK that crashes: SIGSEGV). */
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,7 +25,7 @@ struct teleop_device {
   double period_s;
   double mass_kg, stiffness, damping, friction, reach[3], ramp_s, amplitude[3], frequency_hz, half_side_m, max_force_n;
   double let_go_at_s;
-  long fail_after_reads, nan_after_reads;
+  long fail_after_reads, nan_after_reads, crash_after_reads;
   uint32_t buttons;
   long reads;
   double p[3], v[3], force[3];
@@ -55,6 +56,7 @@ static int set(struct teleop_device* d, const char* key, double value) {
   }
   if (strcmp(key, "fail_after_reads") == 0) d->fail_after_reads = (long)value;
   else if (strcmp(key, "nan_after_reads") == 0) d->nan_after_reads = (long)value;
+  else if (strcmp(key, "crash_after_reads") == 0) d->crash_after_reads = (long)value;
   else if (strcmp(key, "buttons") == 0) d->buttons = (uint32_t)value;
   else return 0;
   return 1;
@@ -109,6 +111,7 @@ static double target(const struct teleop_device* d, int k, double t) {
 }
 
 static int delta_read(teleop_device* d, teleop_device_state* state) {
+  if (d->crash_after_reads > 0 && d->reads >= d->crash_after_reads) raise(SIGSEGV);
   if (d->fail_after_reads > 0 && d->reads >= d->fail_after_reads) {
     snprintf(d->error, sizeof d->error, "lost the device after %ld reads (fail_after_reads)", d->reads);
     return -1;

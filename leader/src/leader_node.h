@@ -54,6 +54,8 @@ class LeaderNode final : public runtime::NodeLogic {
   const Eigen::Vector3d& felt_force() const { return felt_force_; }
   /// For tests: the device's flange (or handle) speed in the last cycle [m/s].
   double device_speed_mps() const { return device_speed_mps_; }
+  /// The device leader.device named.
+  const LeaderDevice& device() const { return *device_impl_; }
 
  private:
   void poll_peers();

@@ -88,8 +88,9 @@ TEST(HandsOff, AHapticArmLetGoInContactIsStoppedByItsSpeedGuard) {
 }
 
 TEST(HandsOff, ADeltaPluginLetGoInContactLosesItsForceWithItsDeadMan) {
+  // in the leader's process: the test steps the leader faster than real time, the delta with it
   const std::string delta = std::string("  device: plugin\n  plugin: {library: ") + TELEOP_DELTA_PLUGIN +
-                            ", settings: {frequency_hz: 0, mass_kg: 0.3, let_go_at_s: " + std::to_string(kLetGoS) + "}}\n";
+                            ", isolation: in_process, settings: {frequency_hz: 0, mass_kg: 0.3, let_go_at_s: " + std::to_string(kLetGoS) + "}}\n";
   const LetGo unguarded = let_go(delta, "");
   const LetGo guarded = let_go(delta + "  buttons: {dead_man: 0}\n", "");
   std::printf("delta let go in contact: fastest %.3f m/s without a dead-man, %.3f m/s with\n", unguarded.peak_speed_mps,

@@ -116,7 +116,7 @@ TEST(PluginDevice, TheConfigurationLoadsTheLibraryAndNamesWhatIsWrong) {
 TEST(PluginDevice, TheLeaderCommandsFromThePluginRendersOnItAndHoldsWhenItFails) {
   test::NodeHarness harness{"leader"};
   const std::string settings = std::string("{library: ") + TELEOP_DELTA_PLUGIN +
-                               ", settings: {reach_z_m: 0.02, ramp_s: 0.2, frequency_hz: 0, fail_after_reads: 400}}";
+                               ", isolation: in_process, settings: {reach_z_m: 0.02, ramp_s: 0.2, frequency_hz: 0, fail_after_reads: 400}}";
   LeaderNode node(parse_leader_config(leader_yaml("pfc", settings)), harness.context);
   test::FollowingPeer<msg::CartesianCommand> follower(harness.peer, transport::topics::kLeaderCartesian, 7);
   transport::Publication<msg::WrenchStamped> wrench(harness.peer, transport::topics::kFollowerWrench, "follower");
