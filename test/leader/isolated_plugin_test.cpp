@@ -24,13 +24,14 @@ namespace {
 
 using namespace std::chrono_literals;
 
-HostedPluginConfig delta(PluginSettings settings) {
+// the host's timeout long enough for a loaded test machine to starve the host a while
+HostedPluginConfig delta(PluginSettings settings, double host_timeout_s = 1.0) {
   HostedPluginConfig c;
   c.library = TELEOP_DELTA_PLUGIN;
   c.settings = std::move(settings);
   c.cartesian = true;
   c.host = TELEOP_DEVICE_HOST;
-  c.host_timeout_s = 0.2;  // a loaded test host may starve the host a while
+  c.host_timeout_s = host_timeout_s;
   return c;
 }
 
@@ -72,15 +73,23 @@ TEST(IsolatedPlugin, TheHostedDeltaMovesWithTheHandAndGivesWayToTheForceRendered
 }
 
 TEST(IsolatedPlugin, APluginThatCrashesTakesItsHostDownAndTheLeaderReadsItAsLost) {
-  IsolatedPluginDevice device(delta({{"crash_after_reads", "300"}}));
-  const Ran ran = run_for(device, 1500ms);
-  EXPECT_GT(ran.failed, 0) << "the host died at its 300th read";
+  IsolatedPluginDevice device(delta({{"crash_after_reads", "300"}}, 0.3));
   DeviceState state;
-  EXPECT_FALSE(device.read(state));
+  int reads = 0;
+  const auto until = std::chrono::steady_clock::now() + 20s;
+  while (device.read(state) && std::chrono::steady_clock::now() < until) {
+    ++reads;
+    (void)device.write(JointVector{});
+    std::this_thread::sleep_for(1ms);
+  }
+  EXPECT_GT(reads, 0) << "it served before it crashed";
+  EXPECT_FALSE(device.read(state)) << "the host died at its 300th read: lost";
+  EXPECT_FALSE(device.write(JointVector{}));
   EXPECT_EQ(counter(device, "plugin_host_losses"), 1.0);
   int status = 0;
-  EXPECT_EQ(::waitpid(device.host_pid(), &status, WNOHANG), device.host_pid());
-  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGSEGV) << "the plugin's crash, in the host";
+  EXPECT_EQ(::waitpid(device.host_pid(), &status, 0), device.host_pid());
+  // SIGSEGV; a sanitizer's runtime in the host catches it, reports it and aborts or exits 1
+  EXPECT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the plugin's crash ended the host";
 }
 
 TEST(IsolatedPlugin, AHostThatCannotOpenTheDeviceNamesThePluginsError) {
@@ -101,7 +110,7 @@ TEST(IsolatedPlugin, TheLeaderHoldsAndGoesOnWhenTheHostIsKilled) {
       "teleoperation: {architecture: pfc}\nleader:\n  joints: 7\n  feedback: {enabled: true}\n"
       "  home_rad: [0.0, -0.2438, 0.0, -2.2, 0.0, 1.96, 0.785]\n  arm_model: " +
           std::string(TELEOP_SOURCE_DIR) + "/config/models/panda.xml\n  device: plugin\n  plugin: {library: " +
-          TELEOP_DELTA_PLUGIN + ", host_timeout_ms: 200, settings: {frequency_hz: 0}}\n",
+          TELEOP_DELTA_PLUGIN + ", host_timeout_ms: 300, settings: {frequency_hz: 0}}\n",
       "leader.yaml");
   LeaderConfig config = parse_leader_config(root);
   LeaderNode node(config, harness.context);
@@ -123,7 +132,7 @@ TEST(IsolatedPlugin, TheLeaderHoldsAndGoesOnWhenTheHostIsKilled) {
   const auto* device = dynamic_cast<const IsolatedPluginDevice*>(&node.device());
   ASSERT_NE(device, nullptr) << "isolated by default";
   ASSERT_EQ(::kill(device->host_pid(), SIGKILL), 0);
-  cycle_for(500ms);
+  cycle_for(800ms);
   EXPECT_EQ(node.state(), msg::STATE_SAFE_HOLD);
   std::vector<uint32_t> faults;
   node.active_faults(faults);
