@@ -1,5 +1,10 @@
+// `leader.device: robot_arm`: the robot backend and its keys read with the configuration (by the
+// registry of robots the executable brings), the arm and its gravity model built when the node
+// starts.
 #include <limits>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "robot_arm_device.h"

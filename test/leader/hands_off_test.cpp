@@ -1,13 +1,15 @@
 // Hands off (docs/devices/plugins.md): the operator lets go of a force-feedback device while the
 // follower presses on a wall, and the force rendered must not drive the device away. With each
-// force-feedback backend: the simulated haptic arm (joints) guarded by its speed, the reference
-// delta plugin (Cartesian) by its dead-man button; each against the same device unguarded.
+// force-feedback backend: the simulated haptic arm (joints) and the arm of CiA 402 drives as
+// master (robot_arm) guarded by their speed, the reference delta plugin (Cartesian) by its
+// dead-man button; each against the same device unguarded.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <string>
 #include <thread>
 
+#include "emulated_master.h"
 #include "following_peer.h"
 #include "hands_off_guard.h"
 #include "leader_config.h"
@@ -42,7 +44,8 @@ struct LetGo {
   double rendered_at_end = 0.0;
 };
 
-LetGo let_go(const std::string& device_keys, const std::string& feedback_keys) {
+LetGo let_go(const std::string& device_keys, const std::string& feedback_keys,
+            const DeviceRegistry& devices = builtin_devices()) {
   test::NodeHarness harness{"leader"};
   const ConfigNode root = ConfigNode::load_string(
       "teleoperation: {architecture: pfc}\nleader:\n  joints: 7\n"
@@ -51,7 +54,7 @@ LetGo let_go(const std::string& device_keys, const std::string& feedback_keys) {
           std::string(TELEOP_SOURCE_DIR) + "/config/models/panda.xml\n" + device_keys +
           "  feedback: {enabled: true, cutoff_hz: 0, max_torque_nm: [20, 20, 20, 20, 5, 5, 5]" + feedback_keys + "}\n",
       "leader.yaml");
-  LeaderNode node(parse_leader_config(root), harness.context);
+  LeaderNode node(parse_leader_config(root, devices), harness.context);
   test::FollowingPeer<msg::CartesianCommand> follower(harness.peer, transport::topics::kLeaderCartesian, 7);
   transport::Publication<msg::WrenchStamped> wrench(harness.peer, transport::topics::kFollowerWrench, "follower");
   EXPECT_TRUE(test::eventually([&] { return follower.state.matched() > 0 && follower.command.reader().matched() > 0; }));
@@ -87,8 +90,21 @@ TEST(HandsOff, AHapticArmLetGoInContactIsStoppedByItsSpeedGuard) {
   EXPECT_LT(guarded.peak_speed_mps, 0.5 * unguarded.peak_speed_mps) << "the force stopped driving it away";
 }
 
+// the arm of CiA 402 drives as master (in process): no hand on it at all, so let go from the start
+TEST(HandsOff, ACanArmMasterLetGoInContactIsStoppedByItsSpeedGuard) {
+  const std::string arm = test::emulated_master_keys();
+  const LetGo unguarded = let_go(arm, "", test::emulated_master_devices());
+  const LetGo guarded = let_go(arm, ", hands_off_speed_mps: 0.1", test::emulated_master_devices());
+  std::printf("CAN arm master let go in contact: fastest %.3f m/s unguarded, %.3f m/s guarded\n",
+              unguarded.peak_speed_mps, guarded.peak_speed_mps);
+  EXPECT_EQ(unguarded.hands_off_events, 0.0);
+  EXPECT_GE(guarded.hands_off_events, 1.0);
+  EXPECT_LT(guarded.peak_speed_mps, 0.5 * unguarded.peak_speed_mps) << "the force stopped driving it away";
+}
+
 TEST(HandsOff, ADeltaPluginLetGoInContactLosesItsForceWithItsDeadMan) {
-  // in the leader's process: the test steps the leader faster than real time, the delta with it
+  // in the leader's process, so that the delta's hand (which counts its time in its reads) lets
+  // go at the leader's cycle of let_go_at_s
   const std::string delta = std::string("  device: plugin\n  plugin: {library: ") + TELEOP_DELTA_PLUGIN +
                             ", isolation: in_process, settings: {frequency_hz: 0, mass_kg: 0.3, let_go_at_s: " + std::to_string(kLetGoS) + "}}\n";
   const LetGo unguarded = let_go(delta, "");

@@ -10,47 +10,22 @@
 #include <memory>
 #include <string>
 
-#include "emulated_can_arm.h"
+#include "emulated_master.h"
 #include "robot_arm_device.h"
-#include "teleop/leader/arm_devices.h"
-#include "teleop/robot/mujoco_backend.h"
 
 namespace teleop::leader {
 namespace {
 
 constexpr double kPeriodS = 1e-3;
 
-// Panda-sized drives, two per bus (the shipped config/nodes/follower_canopen_arm.yaml), turning a
-// bare Panda at the leader's home; `extra`: more keys of leader.robot_arm
-std::string leader_section(const std::string& extra) {
-  std::string drives;
-  const char* buses[] = {"can0", "can0", "can1", "can1", "can2", "can2", "can3"};
-  for (int k = 0; k < 7; ++k) {
-    const bool big = k < 4;
-    drives += std::string("      - {bus: ") + buses[k] + ", node: " + std::to_string(k + 1) +
-              ", gear_ratio: 100, gear_efficiency: 0.9, encoder_ticks_per_rev: 65536, rated_torque_mnm: " +
-              (big ? "100, max_torque_nm: 87}\n" : "15, max_torque_nm: 12}\n");
-  }
-  return "leader:\n  joints: 7\n  device: robot_arm\n  robot_arm:\n    hardware: canopen_emulated\n"
-         "    mujoco: {model: " + std::string(TELEOP_SOURCE_DIR) + "/config/models/panda.xml, keyframe: ready}\n"
-         "    canopen:\n      drives:\n" + drives + extra;
-}
-
-robot::HardwareRegistry emulated_robots() {
-  robot::HardwareRegistry robots;
-  robot::add_mujoco_backend(robots);
-  emulator::test::add_emulated_canopen_backend(robots);
-  return robots;
-}
+std::string leader_section(const std::string& extra) { return "leader:\n  joints: 7\n" + test::emulated_master_keys(extra); }
 
 std::unique_ptr<LeaderDevice> make_device(const std::string& extra, const std::string& arm_model) {
-  DeviceRegistry devices;
-  add_robot_arm_device(devices, emulated_robots());
   const ConfigNode root = ConfigNode::load_string(leader_section(extra), "leader.yaml");
   DeviceSetup setup;
   setup.period_s = kPeriodS;
   setup.arm_model = arm_model;
-  return devices.parse(root.child("leader"))->make(setup);
+  return test::emulated_master_devices().parse(root.child("leader"))->make(setup);
 }
 
 const std::string kPanda = std::string(TELEOP_SOURCE_DIR) + "/config/models/panda.xml";
@@ -87,7 +62,7 @@ TEST(RobotArmDevice, ItsDrivesCarryTheArmsWeightSoThatItStaysWhereTheOperatorLef
   EXPECT_STREQ(device->name(), "robot_arm:canopen_emulated:can0,can1,can2,can3");
 
   // the same arm given no torque through the same drives: its weight pulls it down
-  robot::HardwareRegistry robots = emulated_robots();
+  robot::HardwareRegistry robots = test::emulated_robots();
   const ConfigNode root = ConfigNode::load_string(leader_section(""), "leader.yaml");
   const auto bare = robots.parse(root.child("leader").child("robot_arm"))->make(kPeriodS);
   robot::ArmState s0;
@@ -147,12 +122,10 @@ TEST(RobotArmDevice, AnArmThatDoesNotCarryItsWeightNeedsItsModel) {
 }
 
 TEST(RobotArmDevice, AnUnknownRobotBackendIsAConfigurationErrorNamingTheKey) {
-  DeviceRegistry devices;
-  add_robot_arm_device(devices, emulated_robots());
   const ConfigNode root = ConfigNode::load_string(
       "leader:\n  joints: 7\n  device: robot_arm\n  robot_arm: {hardware: canopn}\n", "leader.yaml");
   try {
-    (void)devices.parse(root.child("leader"));
+    (void)test::emulated_master_devices().parse(root.child("leader"));
     FAIL() << "parsed";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("hardware"), std::string::npos) << e.what();
