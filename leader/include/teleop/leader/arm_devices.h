@@ -9,6 +9,7 @@
 //       canopen: {...}             # as in a follower's section (docs/robots.md)
 //       gravity_model: ../models/panda.xml   # default: leader.arm_model
 //       max_torque_nm: [...]       # the device's bound per joint, within the robot's limits
+//       damping_nms_per_rad: [...] # a viscous damping it renders (optional)
 // (docs/devices/robot_arm.md).
 
 #include "teleop/leader/device_registry.h"
