@@ -192,7 +192,9 @@ TEST(InputDeviceVm, ADeviceWithoutAConfiguredAxisIsRefusedNamingIt) {
 // A node of the VM's bus (unicast on loopback), at 100 Hz (the emulator cannot keep 1 kHz), under
 // pfc, with timeouts for a loop that the emulator starves now and then, and the Cartesian
 // impedance softened for a 10 ms period: the shipped gains on the light wrist, stepped at 100 Hz,
-// tripped the follower's speed reflex after a 0.14 s stall of a loaded VM (a CI run).
+// tripped the follower's speed reflex after a 0.14 s stall of a loaded VM (a CI run). The
+// follower's hold too (its start holds the arm): 20 N m s/rad on the wrist at 10 ms tripped its
+// speed reflex before the leader came (a CI run).
 std::vector<std::string> node(const std::string& exe, const std::string& config, int domain, const std::string& trace,
                               std::vector<std::string> sets) {
   std::vector<std::string> args{exe, "--config", config, "--domain", std::to_string(domain), "--trace", trace};
@@ -238,7 +240,8 @@ TEST(SpaceMouseTeleopVm, TheHeldCapLiftsTheFollowersFlangeAndItsUnplugHoldsIt) {
   const std::string dir = "/tmp/spacemouse_teleop";
   std::filesystem::create_directories(dir);
   can::test::ChildProcess follower(node("teleop_follower", "follower", domain, dir + "/follower.csv",
-                                        {"follower.command_timeout_ms=500"}));
+                                        {"follower.command_timeout_ms=500", "follower.hold_stiffness_nm_per_rad=50",
+                                         "follower.hold_damping_nms_per_rad=1"}));
   can::test::ChildProcess leader(node("teleop_leader", "leader", domain, dir + "/leader.csv",
                                       {"leader.device=spacemouse", "leader.peer_timeout_ms=1000",
                                        "leader.cartesian={stiffness_n_per_m: [500, 500, 500], stiffness_nm_per_rad: [20, 20, 20], "
