@@ -15,8 +15,18 @@ export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true
 stage() {
   local name=$1 start=$SECONDS
   shift
-  "$@"
+  "$@" || { failure_digest "$name"; exit 1; }
   echo "run_tests: stage $name took $((SECONDS - start)) s (total $SECONDS s)"
+}
+
+# A failed test's output can run to thousands of lines (the VM's console holds six executables)
+# and a CI excerpt keeps only its head and the run's tail: what failed is said again, last.
+failure_digest() {
+  local log="build/$1/Testing/Temporary/LastTest.log"
+  [ -f "$log" ] || return 0
+  echo "run_tests: stage $1 failed; its failures, again:"
+  grep -a -A8 -E ': Failure$|^\[  FAILED  \]|run_in_vm: FAIL|ERROR: (Address|Leak|Thread)Sanitizer|runtime error:' \
+    "$log" | head -200 || true
 }
 
 stage setup ./scripts/setup.sh
