@@ -8,12 +8,12 @@
 namespace teleop::runtime {
 
 EmergencyStopGate::EmergencyStopGate(std::unique_ptr<NodeLogic> logic, transport::Participant& participant,
-                                     std::string node_name)
+                                     std::string node_name, std::string architecture)
     : logic_(std::move(logic)),
       name_(std::move(node_name)),
       requests_(participant.make_reader(transport::topics::kEmergencyStop)),
       events_(&participant.events()),
-      versions_(participant, name_) {}
+      peers_(participant, name_, std::move(architecture)) {}
 
 bool EmergencyStopGate::addressed_to_us(const msg::EmergencyStop& request) const {
   const std::string_view target = request.target().c_str();
@@ -31,7 +31,7 @@ void EmergencyStopGate::log_change(const msg::EmergencyStop& request, int64_t no
 }
 
 void EmergencyStopGate::cycle(const CycleTick& tick) {
-  watch_versions(tick.now_ns);
+  watch_peers(tick.now_ns);
   int64_t reception_ns = 0;
   WriterId writer;
   while (requests_.take_next(request_, reception_ns, writer)) {
@@ -40,14 +40,14 @@ void EmergencyStopGate::cycle(const CycleTick& tick) {
     reaction_max_ns_ = std::max(reaction_max_ns_, system_now_ns() - reception_ns);
     if (request_.engaged() == engaged_) {
       // a repeat changes nothing; an enable while not stopped may end a hold that waits for one
-      if (!engaged_ && !mismatched_ && logic_->enable_requested()) {
+      if (!engaged_ && !any_mismatch() && logic_->enable_requested()) {
         ++hold_enables_;
         log_change(request_, tick.now_ns, /*hold=*/true);
       }
       continue;
     }
-    // nothing resumes a node while a peer of another version talks on the domain
-    if (!request_.engaged() && mismatched_) {
+    // nothing resumes a node while a peer that disagrees talks on the domain
+    if (!request_.engaged() && any_mismatch()) {
       ++enables_refused_;
       continue;
     }
@@ -57,24 +57,37 @@ void EmergencyStopGate::cycle(const CycleTick& tick) {
   logic_->cycle(tick);
 }
 
-void EmergencyStopGate::watch_versions(int64_t now_ns) {
-  const bool mismatched = versions_.mismatched(now_ns);
-  if (mismatched == mismatched_) return;
-  mismatched_ = mismatched;
+void EmergencyStopGate::watch_peers(int64_t now_ns) {
+  watch_peer(Disagreement::kVersion, now_ns);
+  watch_peer(Disagreement::kArchitecture, now_ns);
+}
+
+void EmergencyStopGate::watch_peer(Disagreement what, int64_t now_ns) {
+  const auto i = static_cast<size_t>(what);
+  const bool mismatched = peers_.mismatched(what, now_ns);
+  if (mismatched == mismatched_[i]) return;
+  mismatched_[i] = mismatched;
   NodeEvent e;
-  e.kind = NodeEvent::Kind::kVersionMismatch;
   e.mono_ns = now_ns;
   e.code = mismatched ? 1 : 0;
-  VersionMismatch words;
-  if (versions_.last_mismatch(words)) {
-    e.who = words.peer;
-    e.count = words.peer_protocol;
-    e.topic.assign(words.peer_messages.view());
-    e.detail = words.peer_software;
+  PeerMismatch words;
+  const bool named = peers_.last_mismatch(what, words);
+  if (named) e.who = words.peer;
+  if (what == Disagreement::kVersion) {
+    e.kind = NodeEvent::Kind::kVersionMismatch;
+    if (named) {
+      e.count = words.peer_protocol;
+      e.topic.assign(words.peer_messages.view());
+      e.detail = words.peer_software;
+    }
+  } else {
+    e.kind = NodeEvent::Kind::kArchitectureMismatch;
+    e.topic.assign(peers_.architecture());
+    if (named) e.detail = words.peer_architecture;
   }
   events_->push(e);
   if (!mismatched || engaged_) return;
-  ++version_stops_;
+  ++mismatch_stops_[i];
   engaged_ = true;
   logic_->emergency_stop(true);
 }
@@ -91,7 +104,8 @@ void EmergencyStopGate::active_faults(std::vector<uint32_t>& faults) const {
   if (engaged_ && std::find(faults.begin(), faults.end(), msg::FAULT_EMERGENCY_STOP) == faults.end()) {
     faults.push_back(msg::FAULT_EMERGENCY_STOP);
   }
-  if (mismatched_) faults.push_back(msg::FAULT_VERSION_MISMATCH);
+  if (mismatched_[static_cast<size_t>(Disagreement::kVersion)]) faults.push_back(msg::FAULT_VERSION_MISMATCH);
+  if (mismatched_[static_cast<size_t>(Disagreement::kArchitecture)]) faults.push_back(msg::FAULT_ARCHITECTURE_MISMATCH);
 }
 
 void EmergencyStopGate::fill_report(NodeReport& report) const {
@@ -101,7 +115,8 @@ void EmergencyStopGate::fill_report(NodeReport& report) const {
   report.counters.emplace_back("hold_enables", static_cast<double>(hold_enables_));
   report.counters.emplace_back("emergency_stop_engaged", engaged_ ? 1.0 : 0.0);
   report.counters.emplace_back("emergency_stop_reaction_max_ms", static_cast<double>(reaction_max_ns_) * 1e-6);
-  report.counters.emplace_back("version_mismatch_stops", static_cast<double>(version_stops_));
+  report.counters.emplace_back("version_mismatch_stops", static_cast<double>(mismatch_stops_[0]));
+  report.counters.emplace_back("architecture_mismatch_stops", static_cast<double>(mismatch_stops_[1]));
   report.counters.emplace_back("enables_refused", static_cast<double>(enables_refused_));
 }
 

@@ -5,15 +5,17 @@
 // only an enable ends it; a new command session, a returning link or a restarted peer do not.
 // While it is engaged the node reports STATE_FAULT with FAULT_EMERGENCY_STOP, whatever its logic
 // says, so that no node reads as running while stopped. A peer of another protocol or message
-// version on the domain stops the node the same way (FAULT_VERSION_MISMATCH while it talks,
-// peer_versions.h); no enable is taken until it is gone.
+// version, or one playing another teleoperation architecture, on the domain stops the node the same
+// way (FAULT_VERSION_MISMATCH, FAULT_ARCHITECTURE_MISMATCH while it talks, peer_agreement.h); no
+// enable is taken until it is gone.
 
 #include <teleop/msg/status.h>
 
+#include <array>
 #include <memory>
 #include <string>
 
-#include "peer_versions.h"
+#include "peer_agreement.h"
 #include "teleop/common/node_event.h"
 #include "teleop/runtime/node_logic.h"
 #include "teleop/transport/participant.h"
@@ -23,7 +25,9 @@ namespace teleop::runtime {
 
 class EmergencyStopGate final : public NodeLogic {
  public:
-  EmergencyStopGate(std::unique_ptr<NodeLogic> logic, transport::Participant& participant, std::string node_name);
+  /// `architecture`: the teleoperation architecture the node plays (empty: none).
+  EmergencyStopGate(std::unique_ptr<NodeLogic> logic, transport::Participant& participant, std::string node_name,
+                    std::string architecture = {});
 
   /// Takes what arrived, tells the logic of a change, then runs its cycle. Real-time safe.
   void cycle(const CycleTick& tick) override;
@@ -44,18 +48,20 @@ class EmergencyStopGate final : public NodeLogic {
   bool addressed_to_us(const msg::EmergencyStop& request) const;
   /// `hold`: an enable that ended the logic's hold (no emergency stop was engaged).
   void log_change(const msg::EmergencyStop& request, int64_t now_ns, bool hold);
-  /// Stops the node when a peer of another version appears, logs it when it goes.
-  void watch_versions(int64_t now_ns);
+  /// Stops the node when a peer that disagrees appears, logs it when it goes.
+  void watch_peers(int64_t now_ns);
+  void watch_peer(Disagreement what, int64_t now_ns);
+  bool any_mismatch() const { return mismatched_[0] || mismatched_[1]; }
 
   std::unique_ptr<NodeLogic> logic_;
   std::string name_;
   transport::Reader<msg::EmergencyStop> requests_;
   msg::EmergencyStop request_;
   NodeEventQueue* events_;
-  PeerVersions versions_;
+  PeerAgreement peers_;
   bool engaged_ = false;
-  bool mismatched_ = false;
-  uint64_t version_stops_ = 0;
+  std::array<bool, kDisagreements> mismatched_{};  // by Disagreement
+  std::array<uint64_t, kDisagreements> mismatch_stops_{};
   uint64_t enables_refused_ = 0;
   uint64_t stops_ = 0;
   uint64_t enables_ = 0;

@@ -102,6 +102,15 @@ std::string version_line(const NodeEvent& e, const std::string& node) {
       software_version());
 }
 
+std::string architecture_line(const NodeEvent& e, const std::string& node) {
+  if (e.code == 0) return node + ": the node of another architecture is gone; `teleop enable` resumes";
+  return fmt::format(
+      "{}: STOPPED, ARCHITECTURE MISMATCH: '{}' plays {}, this node plays {}: their samples would mean "
+      "different things on the two sides (docs/architectures.md). Give every node of the pair one "
+      "teleoperation.architecture",
+      node, e.who.view(), e.detail.view(), e.topic.view());
+}
+
 }  // namespace
 
 std::string format_event(const NodeEvent& e, const std::string& node) {
@@ -115,6 +124,7 @@ std::string format_event(const NodeEvent& e, const std::string& node) {
       return fmt::format("{}: the loop stalled for {:.3f} s ({} deadlines skipped)", node, e.value, e.count);
     case NodeEvent::Kind::kAuthority: return authority_line(e, node);
     case NodeEvent::Kind::kVersionMismatch: return version_line(e, node);
+    case NodeEvent::Kind::kArchitectureMismatch: return architecture_line(e, node);
     case NodeEvent::Kind::kClockOffset:
       return fmt::format(
           "{}: the clock of '{}' reads {:.1f} ms {} ours (its fastest samples on {} arrive {:.1f} ms after their "
@@ -147,7 +157,8 @@ spdlog::level::level_enum level_of(const NodeEvent& e) {
     case NodeEvent::Kind::kStall: return spdlog::level::warn;
     case NodeEvent::Kind::kEmergencyStop: return e.code == 1 ? spdlog::level::err : spdlog::level::warn;
     case NodeEvent::Kind::kClockOffset: return spdlog::level::warn;
-    case NodeEvent::Kind::kVersionMismatch: return e.code != 0 ? spdlog::level::err : spdlog::level::warn;
+    case NodeEvent::Kind::kVersionMismatch:
+    case NodeEvent::Kind::kArchitectureMismatch: return e.code != 0 ? spdlog::level::err : spdlog::level::warn;
   }
   return spdlog::level::info;
 }

@@ -18,6 +18,7 @@
 #include "teleop/common/data_paths.h"
 #include "teleop/common/output_file.h"
 #include "teleop/common/version.h"
+#include "teleop/runtime/architecture.h"
 #include "teleop/runtime/command_line_hint.h"
 #include "teleop/runtime/realtime.h"
 #include "teleop/runtime/shutdown_signal.h"
@@ -100,6 +101,8 @@ struct Setup {
   NodeConfig node;
   transport::ParticipantConfig transport;
   LogicBuilder build;
+  /// The teleoperation architecture the node plays (its `teleoperation:` section); empty: none.
+  std::string architecture;
 };
 
 Setup load_setup(const CommandLine& cli, const NodeDescription& description) {
@@ -110,6 +113,7 @@ Setup load_setup(const CommandLine& cli, const NodeDescription& description) {
   setup.transport = transport::parse_participant_config(root.child("transport"), setup.node.name);
   setup.transport.warn_same_name = true;
   setup.build = description.parse(root);
+  if (const auto teleoperation = parse_teleoperation_config(root)) setup.architecture = teleoperation->architecture->name;
   root.check_all_used();
   if (cli.duration_s) setup.node.duration_s = *cli.duration_s;
   if (cli.domain_id) setup.transport.domain_id = *cli.domain_id;
@@ -246,10 +250,11 @@ void run_on_network(const CommandLine& cli, const NodeDescription& description, 
   NodeContext context{node, participant};
   // every node honours the stop chain: its logic behind the gate that latches emergency stops
   std::unique_ptr<NodeLogic> logic =
-      std::make_unique<EmergencyStopGate>(setup.build(context), participant, node.name);
+      std::make_unique<EmergencyStopGate>(setup.build(context), participant, node.name, setup.architecture);
   out.trace = make_trace_recorder(cli, node, *logic);
   if (out.trace && cli.trace_stream) out.stream = std::make_unique<TraceStream>(*out.trace, cli.trace_path);
-  StatusPublisher status(participant, node.name, description.role, node.rate_hz, node.status_rate_hz);
+  StatusPublisher status(participant, node.name, description.role, setup.architecture, node.rate_hz,
+                         node.status_rate_hz);
   const FlowWatch flow_watch(participant, node.name, setup.transport.domain_id);
   NodeEventLog event_log(participant.events(), node.name);
   StateWatch state_watch(participant.events());

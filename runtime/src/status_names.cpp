@@ -33,6 +33,7 @@ const char* fault_name(uint32_t fault_code) {
     case msg::FAULT_NOT_IN_COMMAND: return "not_in_command";
     case msg::FAULT_EMERGENCY_STOP: return "emergency_stop";
     case msg::FAULT_VERSION_MISMATCH: return "version_mismatch";
+    case msg::FAULT_ARCHITECTURE_MISMATCH: return "architecture_mismatch";
   }
   return "unknown_fault";
 }

@@ -9,7 +9,8 @@
 namespace teleop::runtime {
 
 StatusPublisher::StatusPublisher(transport::Participant& participant, const std::string& node_name,
-                                 msg::NodeRole role, double loop_rate_hz, double status_rate_hz)
+                                 msg::NodeRole role, const std::string& architecture, double loop_rate_hz,
+                                 double status_rate_hz)
     : impairment_(participant.impairment()),
       links_(msg::MAX_LINKS),
       publication_(participant, transport::topics::kNodeStatus, node_name),
@@ -18,6 +19,7 @@ StatusPublisher::StatusPublisher(transport::Participant& participant, const std:
   publication_.sample().protocol_version(kProtocolVersion);
   publication_.sample().message_version(message_version());
   publication_.sample().software_version(software_version().substr(0, 31));
+  publication_.sample().architecture(architecture);
   publication_.sample().loop().rate_hz(loop_rate_hz);
   faults_.reserve(msg::MAX_FAULTS);
   publication_.sample().fault_codes().reserve(msg::MAX_FAULTS);

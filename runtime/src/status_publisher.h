@@ -13,8 +13,9 @@ namespace teleop::runtime {
 
 class StatusPublisher {
  public:
+  /// `architecture`: the teleoperation architecture the node plays, said in every status (empty: none).
   StatusPublisher(transport::Participant& participant, const std::string& node_name, msg::NodeRole role,
-                  double loop_rate_hz, double status_rate_hz);
+                  const std::string& architecture, double loop_rate_hz, double status_rate_hz);
 
   /// Publishes when a status period has passed since the last one, or at once when the node's
   /// state or faults `changed` (a leader waits for its follower's word that it follows it).

@@ -1,4 +1,5 @@
 // Whether a leader's commands are in force, from what the node taking them says in its status.
+#include "test_participant.h"
 #include "teleop/runtime/command_authority.h"
 
 #include <gtest/gtest.h>
@@ -16,13 +17,7 @@ namespace {
 
 constexpr const char* kCommandTopic = "teleop/leader/joint_command";
 
-transport::ParticipantConfig config(const std::string& name) {
-  transport::ParticipantConfig c;
-  c.domain_id = static_cast<int>(getpid() % 80) + 150;
-  c.name = name;
-  c.shm = true;
-  return c;
-}
+transport::ParticipantConfig config(const std::string& name) { return test::local_participant(name, 150); }
 
 bool wait_for(const std::function<bool()>& done) {
   const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);

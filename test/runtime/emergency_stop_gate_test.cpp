@@ -10,18 +10,13 @@
 #include <functional>
 #include <thread>
 
+#include "test_participant.h"
 #include "teleop/transport/publication.h"
 
 namespace teleop::runtime {
 namespace {
 
-transport::ParticipantConfig config(const std::string& name) {
-  transport::ParticipantConfig c;
-  c.domain_id = static_cast<int>(getpid() % 80) + 70;
-  c.name = name;
-  c.shm = true;
-  return c;
-}
+transport::ParticipantConfig config(const std::string& name) { return test::local_participant(name, 70); }
 
 // a node's logic that says running and records, at each cycle's work, whether it was told to stop
 class RecordingLogic final : public NodeLogic {

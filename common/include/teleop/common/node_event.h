@@ -20,6 +20,7 @@ struct NodeEvent {
     kAuthority,  ///< whether the node's commands are in force changed: why not (`code`), at `who`, `detail`
     kEmergencyStop,  ///< an emergency stop engaged (`code` 1) or was ended by an enable (0), or an enable ended a hold waiting for one (2); sent by `who` from `topic`
     kVersionMismatch,  ///< a peer `who` of protocol `count`, messages `topic`, software `detail` is heard (`code` 1) or gone (0)
+    kArchitectureMismatch,  ///< a peer `who` playing architecture `detail` is heard (`code` 1) or gone (0); ours is `topic`
     kClockOffset,    ///< `who`'s samples on `topic` arrive `value` seconds after their stamps at best (clocks apart)
   };
   Kind kind = Kind::kState;

@@ -7,7 +7,7 @@
 namespace teleop {
 
 /// The version of what nodes say to each other, raised by hand when a message's meaning changes
-/// (docs/versions.md). Peers of another protocol or message version stop (runtime/src/peer_versions.h).
+/// (docs/versions.md). Peers of another protocol or message version stop (runtime/src/peer_agreement.h).
 inline constexpr uint32_t kProtocolVersion = 1;
 
 /// The first 12 hex digits of SHA-256 over idl/*.idl at configure time: any change of a message

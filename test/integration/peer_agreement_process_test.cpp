@@ -1,6 +1,8 @@
-// Nodes of different releases on one domain (issue 33): a node hears a status of another protocol
-// or message version, stops (its samples would decode as garbage) naming both versions, takes no
-// enable while it talks, and resumes on `teleop enable` once it is gone.
+// Nodes that disagree on one domain. Of different releases (issue 33): a node hears a status of
+// another protocol or message version, stops (its samples would decode as garbage) naming both
+// versions, takes no enable while it talks, and resumes on `teleop enable` once it is gone. Of
+// different teleoperation architectures (issue 34: a pfc_tdpa leader beside a position_position
+// follower ran "fine" with passivity on one side only): both stop, naming both architectures.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -8,6 +10,7 @@
 #include <csignal>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "process_helpers.h"
 #include "report_counter.h"
@@ -107,6 +110,34 @@ TEST(Versions, ANodeOfAnotherReleaseStopsThePairNamingBothVersionsUntilItIsGoneA
     EXPECT_EQ(counter(*r, "emergency_stop_engaged"), 0.0) << r->name;
   }
   EXPECT_EQ(counter(l, "in_command"), 1.0) << "the pair runs again\n" << leader.output() << follower.output();
+}
+
+TEST(Architectures, ALeaderAndAFollowerOfDifferentArchitecturesBothStopNamingBoth) {
+  ProcessSite site;
+  RunningProcess follower(site.args("follower", source("config/nodes/follower.yaml"), "follower"));
+  ASSERT_TRUE(follower.wait_for_output("starting", 20s)) << follower.output();
+  std::vector<std::string> leader_args = site.args("leader", source("config/nodes/leader.yaml"), "leader");
+  leader_args.insert(leader_args.end(), {"--set", "teleoperation.architecture=pfc_tdpa"});
+  RunningProcess leader(leader_args);
+  ASSERT_TRUE(follower.wait_for_output("ARCHITECTURE MISMATCH", 30s)) << follower.output() << leader.output();
+  ASSERT_TRUE(leader.wait_for_output("ARCHITECTURE MISMATCH", 10s)) << leader.output();
+  EXPECT_NE(follower.output().find("'leader' plays pfc_tdpa, this node plays position_position"), std::string::npos)
+      << follower.output();
+  EXPECT_NE(leader.output().find("'follower' plays position_position, this node plays pfc_tdpa"), std::string::npos)
+      << leader.output();
+  // the leader gone, the follower says so and stays stopped until an enable
+  ASSERT_EQ(leader.stop(SIGTERM, 10s), 0) << leader.output();
+  ASSERT_TRUE(follower.wait_for_output("the node of another architecture is gone", 10s)) << follower.output();
+  ASSERT_EQ(follower.stop(SIGTERM, 10s), 0) << follower.output();
+
+  const auto f = runtime::read_report(site.report_path("follower"));
+  const auto l = runtime::read_report(site.report_path("leader"));
+  for (const auto* r : {&f, &l}) {
+    EXPECT_EQ(counter(*r, "architecture_mismatch_stops"), 1.0) << r->name;
+    EXPECT_EQ(counter(*r, "version_mismatch_stops"), 0.0) << r->name;
+    EXPECT_EQ(counter(*r, "emergency_stop_engaged"), 1.0) << r->name << ": stopped until an enable";
+  }
+  EXPECT_EQ(counter(l, "in_command"), 0.0) << leader.output();
 }
 
 }  // namespace
