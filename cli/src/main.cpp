@@ -96,6 +96,10 @@ int main(int argc, char** argv) {
       ->add_option("--domain", experiment_options.domain_id,
                    "DDS domain of the first run; each further run takes the next (default 60)")
       ->check(CLI::Range(0, 232));
+  experiment_cmd
+      ->add_option("--repeat", experiment_options.repeat,
+                   "each run x profile N times, repeat k with seed experiment.seed + k - 1; the table adds mean ± sd")
+      ->check(CLI::Range(1, 1000));
   experiment_cmd->add_flag("--no-plots{false}", experiment_options.plots,
                            "no figures (default: one per metric beside the CSV, each run's in its folder)");
   std::string soak_path;
@@ -152,7 +156,9 @@ int main(int argc, char** argv) {
       const ExperimentConfig config = load_experiment(experiment_path);
       const ExperimentResult result = run_experiment(config, experiment_options);
       std::printf("%s", format_table(result.rows, config.name, config.analysis.kind).c_str());
+      if (result.repeats > 1) std::printf("%s", format_summary_table(result.rows, config.analysis.kind).c_str());
       std::printf("\nresults: %s\ntraces and reports: %s\n", result.csv_path.c_str(), result.report_dir.c_str());
+      if (result.repeats > 1) std::printf("summary: %s\n", summary_csv_path(result.csv_path).c_str());
       if (result.failures > 0)
         std::printf("RESULT: FAILED (%d runs failed or could not be analysed, see above)\n", result.failures);
       const int unrendered = view_commands.render_experiment(result.report_dir);

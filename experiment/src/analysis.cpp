@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <string>
 
 namespace teleop::experiment {
 namespace {
@@ -25,12 +26,33 @@ std::string format(const char* fmt, double a, double b) {
   return text;
 }
 
+// what tripped the follower's reflex, as its trace's `reflex` column counts it (follower's
+// ReflexCause, follower/include/teleop/follower/safety_reflex.h)
+const char* reflex_cause_name(double cause) {
+  switch (static_cast<int>(cause)) {
+    case 1: return "joint torque";
+    case 2: return "force";
+    case 3: return "moment";
+    case 4: return "joint speed";
+    default: return "unknown";
+  }
+}
+
 }  // namespace
+
+double operator_start_s(const Trace& leader, const std::string& prefix) {
+  if (!leader.has(prefix + "operator_s")) return leader.t_s.front();
+  const std::vector<double>& clock = leader.column(prefix + "operator_s");
+  for (size_t i = 0; i < clock.size(); ++i) {
+    if (clock[i] > 0) return leader.t_s[i] - clock[i];
+  }
+  return leader.t_s.front();
+}
 
 RunMetrics analyse(const Trace& leader, const Trace& follower, const AnalysisConfig& config) {
   require_rows(leader);
   require_rows(follower);
-  const double t0_s = leader.t_s.front();
+  const double t0_s = operator_start_s(leader);
   const std::vector<double> t_leader = relative(leader.t_s, t0_s);
   const std::vector<double> t_follower = relative(follower.t_s, t0_s);
   const Window hold = config.hold;
@@ -65,6 +87,7 @@ RunMetrics analyse(const Trace& leader, const Trace& follower, const AnalysisCon
   m.tdpa_min_energy_j = std::fmin(min_finite(leader.column("tdpa_w_j")), min_finite(follower.column("tdpa_w_j")));
   m.saturation_fraction = fraction_at_least(follower.column("torque_ratio"), kSaturatedTorqueRatio);
   m.safe_hold_fraction = fraction_equal(follower.column("state"), static_cast<double>(msg::STATE_SAFE_HOLD));
+  analyse_run_health(leader, follower, "", m);
   return m;
 }
 
@@ -81,6 +104,14 @@ Verdict judge_stability(const RunMetrics& m, const AnalysisConfig& config) {
   if (m.saturation_fraction > config.stable_max_saturation) {
     why += (why.empty() ? "" : "; ") +
            format("saturated %.3g of the time > %.3g", m.saturation_fraction, config.stable_max_saturation);
+  }
+  if (m.safe_hold_fraction > config.stable_max_safe_hold) {
+    why += (why.empty() ? "" : "; ") +
+           format("in safe hold %.3g of the time > %.3g", m.safe_hold_fraction, config.stable_max_safe_hold);
+  }
+  if (m.reflex_latches > 0) {
+    why += std::string(why.empty() ? "" : "; ") + "safety reflex latched " +
+           std::to_string(std::lround(m.reflex_latches)) + " times (first: " + reflex_cause_name(m.reflex_cause) + ")";
   }
   return {why.empty(), why};
 }

@@ -44,7 +44,8 @@ box_task::BoxTaskSeries box_task_series(const Trace& follower) {
 RunMetrics analyse_arms(const Trace& leader, const Trace& follower, const AnalysisConfig& config) {
   require_rows(leader);
   require_rows(follower);
-  const std::vector<double> t_follower = relative(follower.t_s, leader.t_s.front());
+  const double t0_s = config.arms.empty() ? leader.t_s.front() : operator_start_s(leader, config.arms.front() + "_");
+  const std::vector<double> t_follower = relative(follower.t_s, t0_s);
 
   RunMetrics m;
   for (const std::string& arm : config.arms) {
@@ -55,6 +56,7 @@ RunMetrics analyse_arms(const Trace& leader, const Trace& follower, const Analys
         nan_max(m.saturation_fraction, fraction_at_least(follower.column(arm + "_torque_ratio"), kSaturatedTorqueRatio));
     m.safe_hold_fraction = nan_max(m.safe_hold_fraction, fraction_equal(follower.column(arm + "_state"),
                                                                         static_cast<double>(msg::STATE_SAFE_HOLD)));
+    analyse_run_health(leader, follower, arm + "_", m);
   }
   return m;
 }

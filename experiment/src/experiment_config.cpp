@@ -35,13 +35,15 @@ AnalysisConfig parse_analysis(const ConfigNode& a) {
   const std::vector<double> hold = a.get_double_list("hold_window_s", Range{0, 1e6});
   if (a.has("hold_window_s")) {
     if (hold.size() != 2 || !(hold[0] < hold[1])) {
-      throw a.error("hold_window_s", "expected [begin, end] with begin < end (seconds after the first leader row)");
+      throw a.error("hold_window_s", "expected [begin, end] with begin < end (seconds after the operator began)");
     }
     c.hold = {hold[0], hold[1]};
   }
   c.stable_max_mad_rad = a.get_double("stable_max_mad_rad", Range{0, 1e3}, c.stable_max_mad_rad);
   c.stable_max_saturation = a.get_double("stable_max_saturation", Range{0, 1}, c.stable_max_saturation);
   c.stable_max_force_mad_n = a.get_double("stable_max_force_mad_n", Range{0, 1e4}, c.stable_max_force_mad_n);
+  c.stable_max_safe_hold = a.get_double("stable_max_safe_hold", Range{0, 1}, c.stable_max_safe_hold);
+  if (a.has("max_flows_matched_s")) c.max_flows_matched_s = a.get_double("max_flows_matched_s", Range{0, 1e6});
   return c;
 }
 

@@ -103,7 +103,11 @@ void write_figures(const ExperimentResult& result) {
 
 RunRow analyse_run(const std::string& run, const std::string& profile, const std::string& trace_dir, bool launched_ok,
                    const AnalysisConfig& analysis) {
-  RunRow row{run, profile, launched_ok ? "ok" : "failed", "", trace_dir, {}, {}, {}};
+  RunRow row;
+  row.run = run;
+  row.profile = profile;
+  row.status = launched_ok ? "ok" : "failed";
+  row.trace_dir = trace_dir;
   try {
     const Trace leader = read_trace((fs::path(trace_dir) / (analysis.leader + ".csv")).string());
     const Trace follower = read_trace((fs::path(trace_dir) / (analysis.follower + ".csv")).string());
@@ -114,6 +118,10 @@ RunRow analyse_run(const std::string& run, const std::string& profile, const std
       row.metrics = analyse(leader, follower, analysis);
     }
     row.verdict = judge_stability(row.metrics, analysis);
+    if (const std::string invalid = invalid_reason(row.metrics, analysis); launched_ok && !invalid.empty()) {
+      row.status = "invalid";
+      row.note = invalid;
+    }
   } catch (const TraceError& e) {
     if (launched_ok) row.status = "error";
     row.note = e.what();
@@ -133,30 +141,40 @@ ExperimentResult run_experiment(const ExperimentConfig& config, const Experiment
   result.csv_path =
       options.csv_path.empty() ? (fs::path(result.report_dir) / (config.name + ".csv")).string() : options.csv_path;
   const double duration_s = options.duration_s.value_or(config.duration_s);
+  result.repeats = std::max(1, options.repeat);
   int domain = options.domain_id.value_or(kDefaultFirstDomain);
-  const size_t total = runs.size() * profiles.size();
+  const size_t total = runs.size() * profiles.size() * static_cast<size_t>(result.repeats);
   for (const auto& run : runs) {
     for (const auto& profile : profiles) {
-      if (runtime::shutdown_requested()) break;
-      launcher::LaunchOptions launch;
-      launch.duration_s = duration_s;
-      launch.domain_id = domain;
-      domain = domain >= kMaxDomain ? 0 : domain + 1;
-      launch.network = profile == "none" ? "" : profile;
-      launch.seed = config.seed;
-      launch.report_dir = (fs::path(result.report_dir) / run.spec->name / profile_folder(profile)).string();
-      launch.trace_dir = launch.report_dir;
-      // the whole run and then some: the ring never drops the start the analysis aligns on
-      launch.trace_seconds = duration_s + run.scenario.stop_timeout_s + 5.0;
-      launch.bin_dir = options.bin_dir;
-      launch.sets = run.spec->sets;
-      std::printf("\n[experiment] === %s: run %s, profile %s (%zu of %zu, domain %d) ===\n", config.name.c_str(),
-                  run.spec->name.c_str(), profile.c_str(), result.rows.size() + 1, total, *launch.domain_id);
-      std::fflush(stdout);
-      const launcher::LaunchResult launched = launcher::launch(run.scenario, launch);
-      std::printf("%s", launcher::format_summary(launched.summary, run.spec->name + " / " + profile).c_str());
-      result.rows.push_back(
-          analyse_run(run.spec->name, profile, launch.trace_dir, launched.exit_code == 0, config.analysis));
+      for (int repeat = 1; repeat <= result.repeats; ++repeat) {
+        if (runtime::shutdown_requested()) break;
+        launcher::LaunchOptions launch;
+        launch.duration_s = duration_s;
+        launch.domain_id = domain;
+        domain = domain >= kMaxDomain ? 0 : domain + 1;
+        launch.network = profile == "none" ? "" : profile;
+        // each repeat its own loss pattern; every run of one repeat the same
+        const uint64_t seed = config.seed + static_cast<uint64_t>(repeat - 1);
+        launch.seed = seed;
+        fs::path folder = fs::path(result.report_dir) / run.spec->name / profile_folder(profile);
+        if (result.repeats > 1) folder /= "r" + std::to_string(repeat);
+        launch.report_dir = folder.string();
+        launch.trace_dir = launch.report_dir;
+        // the whole run and then some: the ring never drops the start the analysis aligns on
+        launch.trace_seconds = duration_s + run.scenario.stop_timeout_s + 5.0;
+        launch.bin_dir = options.bin_dir;
+        launch.sets = run.spec->sets;
+        std::printf("\n[experiment] === %s: run %s, profile %s, repeat %d of %d (%zu of %zu, domain %d, seed %llu) ===\n",
+                    config.name.c_str(), run.spec->name.c_str(), profile.c_str(), repeat, result.repeats,
+                    result.rows.size() + 1, total, *launch.domain_id, static_cast<unsigned long long>(seed));
+        std::fflush(stdout);
+        const launcher::LaunchResult launched = launcher::launch(run.scenario, launch);
+        std::printf("%s", launcher::format_summary(launched.summary, run.spec->name + " / " + profile).c_str());
+        RunRow row = analyse_run(run.spec->name, profile, launch.trace_dir, launched.exit_code == 0, config.analysis);
+        row.repeat = repeat;
+        row.seed = seed;
+        result.rows.push_back(std::move(row));
+      }
     }
   }
   for (const auto& row : result.rows) result.failures += row.status == "ok" ? 0 : 1;
@@ -165,6 +183,7 @@ ExperimentResult run_experiment(const ExperimentConfig& config, const Experiment
     result.failures += static_cast<int>(total - result.rows.size());
   }
   write_text(result.csv_path, format_csv(result.rows, config.analysis.kind));
+  if (result.repeats > 1) write_text(summary_csv_path(result.csv_path), format_summary_csv(result.rows, config.analysis.kind));
   if (options.plots && !runtime::shutdown_requested()) write_figures(result);
   return result;
 }

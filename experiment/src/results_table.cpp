@@ -29,6 +29,8 @@ std::vector<Column> safety_columns() {
       {"tdpa_J", "tdpa_min_energy_j", [](const RunRow& r) { return r.metrics.tdpa_min_energy_j; }},
       {"sat", "saturation_fraction", [](const RunRow& r) { return r.metrics.saturation_fraction; }},
       {"hold", "safe_hold_fraction", [](const RunRow& r) { return r.metrics.safe_hold_fraction; }},
+      {"reflex", "reflex_latches", [](const RunRow& r) { return r.metrics.reflex_latches; }},
+      {"match_s", "flows_matched_s", [](const RunRow& r) { return r.metrics.flows_matched_s; }},
   };
 }
 
@@ -99,6 +101,77 @@ std::string csv_text(const std::string& text) {
 
 std::string stable_word(const Verdict& v) { return !v.stable ? "n/a" : (*v.stable ? "yes" : "no"); }
 
+bool repeated(const std::vector<RunRow>& rows) {
+  return std::any_of(rows.begin(), rows.end(), [](const RunRow& r) { return r.repeat > 1; });
+}
+
+// the profile, and which repeat when the cells were repeated
+std::string profile_cell(const RunRow& r, bool repeats) {
+  return repeats ? r.profile + " r" + std::to_string(r.repeat) : r.profile;
+}
+
+// the rows of one run x profile, in the order the first of each appears
+std::vector<std::vector<const RunRow*>> cells_of(const std::vector<RunRow>& rows) {
+  std::vector<std::vector<const RunRow*>> cells;
+  for (const RunRow& r : rows) {
+    const auto same = [&](const auto& cell) { return cell.front()->run == r.run && cell.front()->profile == r.profile; };
+    const auto it = std::find_if(cells.begin(), cells.end(), same);
+    if (it == cells.end()) {
+      cells.push_back({&r});
+    } else {
+      it->push_back(&r);
+    }
+  }
+  return cells;
+}
+
+// a metric over the ok repeats of a cell that have it
+struct Spread {
+  size_t n = 0;
+  double mean = kNaN;
+  double sd = kNaN;  // sample standard deviation, NaN below two values
+  size_t yes = 0;    // a flag's
+};
+
+Spread spread_of(const Column& c, const std::vector<const RunRow*>& cell) {
+  std::vector<double> values;
+  for (const RunRow* r : cell) {
+    const double v = c.value(*r);
+    if (r->status == "ok" && !std::isnan(v)) values.push_back(v);
+  }
+  Spread s;
+  s.n = values.size();
+  if (s.n == 0) return s;
+  double sum = 0;
+  for (double v : values) {
+    sum += v;
+    s.yes += v != 0.0 ? 1 : 0;
+  }
+  s.mean = sum / static_cast<double>(s.n);
+  if (s.n < 2) return s;
+  double squares = 0;
+  for (double v : values) squares += (v - s.mean) * (v - s.mean);
+  s.sd = std::sqrt(squares / static_cast<double>(s.n - 1));
+  return s;
+}
+
+size_t count_if_rows(const std::vector<const RunRow*>& cell, const std::function<bool(const RunRow&)>& met) {
+  return static_cast<size_t>(std::count_if(cell.begin(), cell.end(), [&](const RunRow* r) { return met(*r); }));
+}
+size_t ok_count(const std::vector<const RunRow*>& cell) {
+  return count_if_rows(cell, [](const RunRow& r) { return r.status == "ok"; });
+}
+size_t stable_count(const std::vector<const RunRow*>& cell) {
+  return count_if_rows(cell, [](const RunRow& r) { return r.status == "ok" && r.verdict.stable.value_or(false); });
+}
+
+// a metric's summary for the table: "mean±sd" (4 significant digits), "k/n" for a flag, "-" without values
+std::string spread_cell(const Column& c, const Spread& s) {
+  if (s.n == 0) return "-";
+  if (c.flag) return fmt::format("{}/{}", s.yes, s.n);
+  return std::isnan(s.sd) ? fmt::format("{:.4g}", s.mean) : fmt::format("{:.3g}±{:.2g}", s.mean, s.sd);
+}
+
 // the reasons for "unstable" and the errors, one line each
 std::string notes(const std::vector<RunRow>& rows) {
   std::string out;
@@ -114,11 +187,12 @@ std::string notes(const std::vector<RunRow>& rows) {
 std::string format_table(const std::vector<RunRow>& rows, const std::string& title, AnalysedTask kind) {
   const std::vector<Column> metrics = columns(kind);
   std::string out = "\n== teleop experiment: " + title + " ==\n\n";
-  out += fmt::format("{:<17} {:<15} {:<6} {:<6}", "run", "profile", "status", "stable");
+  const bool repeats = repeated(rows);
+  out += fmt::format("{:<17} {:<18} {:<7} {:<6}", "run", "profile", "status", "stable");
   for (const Column& c : metrics) out += fmt::format(" {:>{}}", c.heading, width(c));
   out += "\n";
   for (const auto& r : rows) {
-    out += fmt::format("{:<17} {:<15} {:<6} {:<6}", r.run, r.profile, r.status, stable_word(r.verdict));
+    out += fmt::format("{:<17} {:<18} {:<7} {:<6}", r.run, profile_cell(r, repeats), r.status, stable_word(r.verdict));
     for (const Column& c : metrics) out += fmt::format(" {:>{}}", cell(c, c.value(r)), width(c));
     out += "\n";
   }
@@ -129,16 +203,56 @@ std::string format_table(const std::vector<RunRow>& rows, const std::string& tit
 
 std::string format_csv(const std::vector<RunRow>& rows, AnalysedTask kind) {
   const std::vector<Column> metrics = columns(kind);
-  std::string out = "run,profile,status,stable,stable_why";
+  std::string out = "run,profile,repeat,seed,status,stable,stable_why";
   for (const Column& c : metrics) out += std::string(",") + c.csv_name;
   out += ",trace_dir,note\n";
   for (const auto& r : rows) {
-    out += csv_text(r.run) + "," + csv_text(r.profile) + "," + r.status + "," +
+    out += csv_text(r.run) + "," + csv_text(r.profile) + "," + std::to_string(r.repeat) + "," + std::to_string(r.seed) +
+           "," + r.status + "," +
            (r.verdict.stable ? (*r.verdict.stable ? "yes" : "no") : "") + "," + csv_text(r.verdict.why);
     for (const Column& c : metrics) out += "," + csv_cell(c, c.value(r));
     out += "," + csv_text(r.trace_dir) + "," + csv_text(r.note) + "\n";
   }
   return out;
+}
+
+std::string format_summary_table(const std::vector<RunRow>& rows, AnalysedTask kind) {
+  const std::vector<Column> metrics = columns(kind);
+  std::string out = "\nmean ± sample standard deviation over the ok repeats of each run x profile\n\n";
+  out += fmt::format("{:<17} {:<15} {:>5} {:>6}", "run", "profile", "ok", "stable");
+  for (const Column& c : metrics) out += fmt::format(" {:>{}}", c.heading, width(c) + 4);
+  out += "\n";
+  for (const auto& cell : cells_of(rows)) {
+    out += fmt::format("{:<17} {:<15} {:>5} {:>6}", cell.front()->run, cell.front()->profile,
+                       fmt::format("{}/{}", ok_count(cell), cell.size()), fmt::format("{}/{}", stable_count(cell), ok_count(cell)));
+    for (const Column& c : metrics) out += fmt::format(" {:>{}}", spread_cell(c, spread_of(c, cell)), width(c) + 4);
+    out += "\n";
+  }
+  return out;
+}
+
+std::string format_summary_csv(const std::vector<RunRow>& rows, AnalysedTask kind) {
+  const std::vector<Column> metrics = columns(kind);
+  std::string out = "run,profile,repeats,ok,stable";
+  for (const Column& c : metrics) out += fmt::format(",{}_mean,{}_sd", c.csv_name, c.csv_name);
+  out += "\n";
+  for (const auto& cell : cells_of(rows)) {
+    out += csv_text(cell.front()->run) + "," + csv_text(cell.front()->profile) + "," + std::to_string(cell.size()) +
+           "," + std::to_string(ok_count(cell)) + "," + std::to_string(stable_count(cell));
+    for (const Column& c : metrics) {
+      const Spread s = spread_of(c, cell);
+      out += "," + (s.n == 0 ? std::string() : fmt::format("{:.9g}", s.mean)) + "," +
+             (std::isnan(s.sd) ? std::string() : fmt::format("{:.9g}", s.sd));
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+std::string summary_csv_path(const std::string& csv_path) {
+  const std::string suffix = ".csv";
+  const bool csv = csv_path.size() >= suffix.size() && csv_path.compare(csv_path.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return (csv ? csv_path.substr(0, csv_path.size() - suffix.size()) : csv_path) + "_summary.csv";
 }
 
 }  // namespace teleop::experiment

@@ -52,6 +52,7 @@ OperatorMotionConfig parse_motion(const ConfigNode& s, size_t joints, const Join
   m.frequency_hz = s.get_double("frequency_hz", Range{0, 50}, m.frequency_hz);
   m.ramp_s = s.get_double("ramp_s", Range{0, 60}, m.ramp_s);
   m.let_go_at_s = s.get_double("let_go_at_s", Range{0, 1e6}, m.let_go_at_s);
+  m.starts_in_command = s.get_choice("motion_starts", {"at_start", "in_command"}, "at_start") == "in_command";
   for (const ConfigNode& p : s.get_node_list("button_presses")) {
     m.presses.push_back({static_cast<uint32_t>(p.get_int("button", Range{0, kMaxButton})), p.get_double("at_s", Range{0, 1e6}),
                          p.get_double("hold_s", Range{1e-3, 1e6}, 0.2)});

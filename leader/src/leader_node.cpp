@@ -237,9 +237,10 @@ void LeaderNode::cycle(const CycleTick& tick) {
   poll_peers();
   update_state(tick.now_ns);
   // the operator keeps moving; what the follower is sent freezes while it is lost
-  device_connected_ = move_device(static_cast<double>(tick.index) * period_s_);
+  operator_s_ = operator_time_s(tick);
+  device_connected_ = move_device(operator_s_);
   send_stop_requests(tick.now_ns);
-  command_hand(static_cast<double>(tick.index) * period_s_);
+  command_hand(operator_s_);
   // the dead-man released or the clutch held, or the device let go (faster than a hand moves it,
   // hands_off_guard.h): the command holds, the device moves freely; a device that could not be
   // read moves nothing (update_state holds the leader from the next cycle)
@@ -315,12 +316,21 @@ void LeaderNode::fill_report(runtime::NodeReport& report) const {
 
 void LeaderNode::trace_columns(std::vector<std::string>& columns) const {
   for (const char* c : {"x_cmd_x", "x_cmd_y", "x_cmd_z", "f_felt_x", "f_felt_y", "f_felt_z", "tdpa_w_j", "feedback_fade", "state",
-                        "peer_session"}) {
+                        "peer_session", "operator_s"}) {
     columns.emplace_back(c);
   }
   for (size_t i = 0; i < config_.joints; ++i) columns.push_back("q_dev_" + std::to_string(i));
   for (size_t i = 0; i < config_.joints; ++i) columns.push_back("dq_dev_" + std::to_string(i));
   for (size_t i = 0; i < config_.joints; ++i) columns.push_back("tau_fb_" + std::to_string(i));
+}
+
+double LeaderNode::operator_time_s(const CycleTick& tick) {
+  if (!config_.motion.starts_in_command) return static_cast<double>(tick.index) * period_s_;
+  if (!operator_started_ && state_ == msg::STATE_RUNNING) {
+    operator_started_ = true;
+    operator_start_index_ = tick.index;
+  }
+  return operator_started_ ? static_cast<double>(tick.index - operator_start_index_) * period_s_ : 0.0;
 }
 
 void LeaderNode::trace_row(double* row) const {
@@ -333,6 +343,8 @@ void LeaderNode::trace_row(double* row) const {
   *row++ = static_cast<double>(state_);
   // which follower's state the leader follows (a restarted follower opens a new session)
   *row++ = static_cast<double>(follower_state_.session().session());
+  // the simulated operator's clock (leader.motion_starts): 0 until its motion starts
+  *row++ = operator_s_;
   row = std::copy_n(device_.q_rad.begin(), config_.joints, row);
   row = std::copy_n(device_.dq_radps.begin(), config_.joints, row);
   std::copy_n(renderer_.output().begin(), config_.joints, row);

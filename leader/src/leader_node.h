@@ -80,6 +80,8 @@ class LeaderNode final : public runtime::NodeLogic {
   void send_stop_requests(int64_t now_ns);
   void command_hand(double t_s);
   void update_trace_values();
+  /// The simulated operator's clock this cycle [s] (leader.motion_starts).
+  double operator_time_s(const CycleTick& tick);
 
   LeaderConfig config_;
   double period_s_;
@@ -96,6 +98,9 @@ class LeaderNode final : public runtime::NodeLogic {
   std::unique_ptr<ArmKinematics> device_kinematics_;
   std::unique_ptr<ArmKinematics> command_kinematics_;
   OperatorMotion motion_;
+  uint64_t operator_start_index_ = 0;
+  bool operator_started_ = false;
+  double operator_s_ = 0.0;  // traced: the analysis aligns its windows on the operator's start
   msg::NodeState state_ = msg::STATE_STARTING;
   OperatorIntent intent_{};  // the simulated operator's, given to the device every cycle
   DeviceState device_{};

@@ -38,6 +38,10 @@ struct OperatorMotionConfig {
   std::vector<ButtonPress> presses;
   /// leader.let_go_at_s: when the operator lets go of the device (hands off, no button held).
   double let_go_at_s = std::numeric_limits<double>::infinity();
+  /// leader.motion_starts: in_command: the operator's clock (motion, presses, letting go) starts
+  /// when the leader is first in command, so that flows matching late take no part of the motion
+  /// (experiments); at_start (the default): when the node starts.
+  bool starts_in_command = false;
 };
 
 class OperatorMotion {

@@ -6,7 +6,7 @@ import csv
 from figure_style import new_figure
 
 # columns that name or explain a row; every other column whose cells are numbers is a metric
-NOT_METRICS = {"run", "profile", "status", "stable", "stable_why", "trace_dir", "note"}
+NOT_METRICS = {"run", "profile", "repeat", "seed", "status", "stable", "stable_why", "trace_dir", "note"}
 # the unit a metric's name ends in (docs/experiments.md: SI units in the names)
 UNITS = [("_fraction", "fraction of cycles"), ("_mm", "mm"), ("_rad", "rad"), ("_n", "N"), ("_m", "m"), ("_j", "J"),
          ("_s", "s")]
@@ -50,18 +50,45 @@ def unique(values):
     return list(dict.fromkeys(values))
 
 
+def cell_values(rows, metric):
+    """{(run, profile): [values of the ok repeats]} and {(run, profile): status to show instead}: a
+    cell none of whose repeats is ok (failed, or invalid: its numbers are no result) shows the
+    status of its first repeat, not a bar."""
+    values, shown = {}, {}
+    for r in rows:
+        key = (r["run"], r["profile"])
+        status = r.get("status", "ok") or "ok"
+        if status == "ok" and r[metric] != "":
+            values.setdefault(key, []).append(number(r[metric]))
+        elif status != "ok":
+            shown.setdefault(key, status)
+    return values, {k: v for k, v in shown.items() if k not in values}
+
+
+def mean_and_sd(values):
+    mean = sum(values) / len(values)
+    if len(values) < 2:
+        return mean, None
+    return mean, (sum((v - mean) ** 2 for v in values) / (len(values) - 1)) ** 0.5
+
+
 def metric_figure(rows, metric, title):
+    """Grouped bars: the mean over a cell's ok repeats, an error bar of one sample standard
+    deviation where there are two or more."""
     runs, profiles = unique(r["run"] for r in rows), unique(r["profile"] for r in rows)
-    value = {(r["run"], r["profile"]): number(r[metric]) for r in rows if r[metric] != ""}
+    values, shown = cell_values(rows, metric)
     fig, axes = new_figure(1, f"{metric} by run and network profile — {title}", sharex=False)
     ax = axes[0]
     width = 0.8 / len(profiles)
     for k, profile in enumerate(profiles):
         xs = [i + (k - (len(profiles) - 1) / 2) * width for i in range(len(runs))]
-        heights = [value.get((run, profile), 0.0) for run in runs]
-        bars = ax.bar(xs, heights, width, label=profile)
-        # each bar says its number; a run without a sample (or not run) says so instead of a 0
-        labels = [f"{value[(run, profile)]:.3g}" if (run, profile) in value else "n/a" for run in runs]
+        stats = [mean_and_sd(values[(run, profile)]) if (run, profile) in values else (0.0, None) for run in runs]
+        errors = [sd or 0.0 for _, sd in stats]
+        bars = ax.bar(xs, [m for m, _ in stats], width, label=profile,
+                      yerr=errors if any(errors) else None, capsize=3 if any(errors) else 0)
+        # each bar says its number (± its spread); a cell without a sample says why instead of a 0
+        labels = [(f"{m:.3g}" if sd is None else f"{m:.3g}±{sd:.2g}") if (run, profile) in values
+                  else shown.get((run, profile), "n/a") for run, (m, sd) in zip(runs, stats)]
         ax.bar_label(bars, labels, fontsize=8, padding=2)
     ax.axhline(0.0, color="black", linewidth=0.8)
     ax.set_xticks(range(len(runs)), runs)

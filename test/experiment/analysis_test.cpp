@@ -160,6 +160,7 @@ TEST(JudgeStability, IsStableWithinTheLimitsAndUnknownWithoutHoldSamples) {
   AnalysisConfig config;
   config.stable_max_mad_rad = 1.0;
   config.stable_max_saturation = 0.05;
+  config.stable_max_safe_hold = 0.2;  // the trace holds every 10th row
   const Verdict v = judge_stability(analyse(leader_trace(), follower_trace(), config), config);
   EXPECT_EQ(v.stable, std::optional<bool>(true));
   EXPECT_TRUE(v.why.empty());
@@ -167,6 +168,78 @@ TEST(JudgeStability, IsStableWithinTheLimitsAndUnknownWithoutHoldSamples) {
   const RunMetrics short_run = analyse(leader_trace(3.0), follower_trace({}, 3.0), config);
   EXPECT_TRUE(std::isnan(short_run.mad_rad));
   EXPECT_FALSE(judge_stability(short_run, config).stable.has_value());
+}
+
+// `trace` with the column `name` (added, or replaced) holding `f`
+Trace with_column(Trace trace, const std::string& name, const Signal& f) {
+  auto it = std::find(trace.names.begin(), trace.names.end(), name);
+  if (it == trace.names.end()) {
+    trace.names.push_back(name);
+    trace.columns.emplace_back(trace.t_s.size());
+    it = trace.names.end() - 1;
+  }
+  auto& column = trace.columns[static_cast<size_t>(it - trace.names.begin())];
+  for (size_t i = 0; i < column.size(); ++i) column[i] = f(i, trace.t_s[i] - 100.0);
+  return trace;
+}
+
+// 0 before `from_s` (after the leader's first row), `value` after
+Signal from(double from_s, double value) {
+  return [from_s, value](size_t, double t) { return t >= from_s ? value : 0.0; };
+}
+
+TEST(JudgeStability, EveryLatchedReflexAndALongHoldAreReasons) {
+  AnalysisConfig config;
+  config.stable_max_mad_rad = 1.0;
+  config.stable_max_saturation = 0.05;
+  // the speed reflex (4) latched from 3 s to 4 s, the force reflex (2) from 7 s to 8 s
+  const Trace follower = with_column(follower_trace(), "reflex", [](size_t, double t) {
+    return t >= 3.0 && t < 4.0 ? 4.0 : t >= 7.0 && t < 8.0 ? 2.0 : 0.0;
+  });
+  const RunMetrics m = analyse(leader_trace(), follower, config);
+  EXPECT_EQ(m.reflex_latches, 2.0);
+  EXPECT_EQ(m.reflex_cause, 4.0);
+  const Verdict v = judge_stability(m, config);
+  EXPECT_EQ(v.stable, std::optional<bool>(false));
+  EXPECT_NE(v.why.find("in safe hold 0.1 of the time > 0.05"), std::string::npos) << v.why;
+  EXPECT_NE(v.why.find("safety reflex latched 2 times (first: joint speed)"), std::string::npos) << v.why;
+  // without the column (an older trace) nothing is counted
+  EXPECT_TRUE(std::isnan(analyse(leader_trace(), follower_trace(), config).reflex_latches));
+}
+
+TEST(Analyse, CountsTimeFromWhenTheOperatorBegan) {
+  // the operator waited 0.7 s for the leader to be in command (leader.motion_starts: in_command)
+  const Trace waited = with_column(leader_trace(), "operator_s", [](size_t, double t) { return t > 0.7 ? t - 0.7 : 0.0; });
+  EXPECT_NEAR(operator_start_s(waited), 100.7, 1e-9);
+  EXPECT_EQ(operator_start_s(leader_trace()), 100.0) << "without the column: the first row";
+  // the hold window [6, 10] s after it: the felt 10 N of [6, 10] s after the first row cover 3.3 of its 4 s
+  EXPECT_NEAR(analyse(waited, follower_trace(), AnalysisConfig{}).force_felt_n, 10.0 * 3.3 / 4.0, 0.01);
+}
+
+TEST(RunHealth, TheFlowsMatchWhenTheLeaderIsInCommandAndTheFollowerFollowsItsFirstCommand) {
+  const Trace leader = with_column(leader_trace(), "state", [](size_t, double t) {
+    return t >= 0.5 ? msg::STATE_RUNNING : msg::STATE_STARTING;
+  });
+  const AnalysisConfig config;  // settle_s 1.0: the limit
+  const RunMetrics in_time = analyse(leader, with_column(follower_trace(), "cmd_session", from(0.3, 1)), config);
+  EXPECT_NEAR(in_time.flows_matched_s, 0.5, 1e-9);
+  EXPECT_EQ(invalid_reason(in_time, config), "");
+
+  // the follower matched its commands 4 s late (discovery): the run's numbers are no result
+  const RunMetrics late = analyse(leader, with_column(follower_trace(), "cmd_session", from(4.0, 1)), config);
+  EXPECT_NEAR(late.flows_matched_s, 4.0, 2e-3);
+  EXPECT_NE(invalid_reason(late, config).find("the flows matched 4.00 s after the operator began (limit 1.00 s"),
+            std::string::npos)
+      << invalid_reason(late, config);
+  AnalysisConfig patient = config;
+  patient.max_flows_matched_s = 5.0;
+  EXPECT_EQ(invalid_reason(late, patient), "");
+
+  const RunMetrics never = analyse(leader, with_column(follower_trace(), "cmd_session", constant(0)), config);
+  EXPECT_TRUE(std::isinf(never.flows_matched_s));
+  EXPECT_NE(invalid_reason(never, config).find("never all matched"), std::string::npos);
+  // traces without the columns are not judged
+  EXPECT_EQ(invalid_reason(analyse(leader_trace(), follower_trace(), config), config), "");
 }
 
 }  // namespace

@@ -135,7 +135,13 @@ TEST(BoxTaskAnalysis, NamesTheFileAndAMissingArmColumn) {
 }
 
 TEST(BoxTaskAnalysis, TableAndCsvShowTheTasksMetrics) {
-  RunRow row{"pfc_tdpa", "wan-35ms", "ok", "", "/tmp/x", analyse_arms(leader_trace(), follower_trace(), config()), {}, {}};
+  RunRow row;
+  row.run = "pfc_tdpa";
+  row.profile = "wan-35ms";
+  row.status = "ok";
+  row.trace_dir = "/tmp/x";
+  row.seed = 7;
+  row.metrics = analyse_arms(leader_trace(), follower_trace(), config());
   row.box_task = box_task::evaluate_box_task(box_task_series(follower_trace()), config().shelf);
   const std::string table = format_table({row}, "box_task", AnalysedTask::kBoxTask);
   EXPECT_NE(table.find("success"), std::string::npos) << table;
@@ -144,10 +150,11 @@ TEST(BoxTaskAnalysis, TableAndCsvShowTheTasksMetrics) {
   const std::string csv = format_csv({row}, AnalysedTask::kBoxTask);
   const std::string header = csv.substr(0, csv.find('\n'));
   EXPECT_EQ(header,
-            "run,profile,status,stable,stable_why,success,task_time_s,carry_time_s,squeeze_variation_left_n,"
+            "run,profile,repeat,seed,status,stable,stable_why,success,task_time_s,carry_time_s,squeeze_variation_left_n,"
             "squeeze_variation_right_n,squeeze_min_left_n,squeeze_min_right_n,slip_mm,dropped,max_arm_collision_n,"
-            "mad_rad,tdpa_min_energy_j,saturation_fraction,safe_hold_fraction,trace_dir,note");
-  EXPECT_EQ(csv.substr(header.size() + 1, 28), "pfc_tdpa,wan-35ms,ok,,,yes,3") << csv;
+            "mad_rad,tdpa_min_energy_j,saturation_fraction,safe_hold_fraction,reflex_latches,flows_matched_s,trace_dir,"
+            "note");
+  EXPECT_EQ(csv.substr(header.size() + 1, 32), "pfc_tdpa,wan-35ms,1,7,ok,,,yes,3") << csv;
 }
 
 }  // namespace

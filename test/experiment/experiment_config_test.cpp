@@ -72,7 +72,7 @@ TEST_F(ExperimentFile, NamesFileAndKeyOfEachProblem) {
   EXPECT_EQ(error_for("  name: x\n  profiles: [none]\n" + std::string(kRuns) + "  analysis: {hold_window_s: [5, 2]}\n"),
             file +
                 ":6: experiment.analysis.hold_window_s: expected [begin, end] with begin < end (seconds after the "
-                "first leader row)");
+                "operator began)");
   EXPECT_EQ(error_for("  name: x\n  profiles: [none]\n" + std::string(kRuns) + "  analysis: {settle: 1}\n"),
             file + ":6: experiment.analysis.settle: unknown key");
 }

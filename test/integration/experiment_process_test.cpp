@@ -38,10 +38,28 @@ std::string csv_cell(const std::string& csv, size_t row, const std::string& colu
 }
 
 // without figures: these tests are about the numbers (plot_process_test.cpp checks the figures)
-ProcessResult run_experiment(const std::string& file, const std::string& report_dir) {
-  return run_process({bin("teleop"), "experiment", file, "--report-dir", report_dir, "--domain",
-                      std::to_string(unique_domain()), "--bin-dir", TELEOP_BIN_DIR, "--no-plots"},
-                     std::chrono::seconds(120));
+ProcessResult run_experiment(const std::string& file, const std::string& report_dir,
+                             const std::vector<std::string>& more = {}) {
+  std::vector<std::string> args{bin("teleop"), "experiment", file, "--report-dir", report_dir, "--domain",
+                                std::to_string(unique_domain()), "--bin-dir", TELEOP_BIN_DIR, "--no-plots"};
+  args.insert(args.end(), more.begin(), more.end());
+  return run_process(args, std::chrono::seconds(120));
+}
+
+// the synthetic pair's node configs in `dir` (leader.yaml, follower.yaml)
+void write_synthetic_pair(const std::string& dir) {
+  const std::string transport = "transport: {domain_id: 42, udpv4: true, shm: false}\n";
+  write_file(dir + "/leader.yaml", "node: {name: leader}\n" + transport + "synthetic: {role: leader}\n");
+  write_file(dir + "/follower.yaml", "node: {name: follower}\n" + transport + "synthetic: {role: follower}\n");
+}
+
+// a scenario `name` of the synthetic pair in `dir`, the follower with `follower_sets` (a YAML map's entries)
+void write_synthetic_scenario(const std::string& dir, const std::string& name, const std::string& follower_sets = "") {
+  write_file(dir + "/" + name + ".yaml",
+             "scenario: {name: " + name + "}\nnodes:\n"
+             "  - {name: follower, executable: teleop_synthetic_trace_node, config: follower.yaml, set: {" +
+                 follower_sets + "}}\n"
+                 "  - {name: leader, executable: teleop_synthetic_trace_node, config: leader.yaml}\n");
 }
 
 // the shipped leader and follower over two profiles: both runs happen and trace, and every
@@ -93,9 +111,7 @@ TEST(ExperimentProcess, RunsEveryProfileWithTheRealNodesAndAnalysesTheirTraces) 
 // file and column, and either makes the exit code non-zero
 TEST(ExperimentProcess, AnalysesTracesOfTwoProcessesAndKeepsFailedAndBrokenRunsAsRows) {
   const std::string dir = make_temp_dir();
-  const std::string transport = "transport: {domain_id: 42, udpv4: true, shm: false}\n";
-  write_file(dir + "/leader.yaml", "node: {name: leader}\n" + transport + "synthetic: {role: leader}\n");
-  write_file(dir + "/follower.yaml", "node: {name: follower}\n" + transport + "synthetic: {role: follower}\n");
+  write_synthetic_pair(dir);
   const std::string nodes =
       "nodes:\n"
       "  - {name: follower, executable: teleop_synthetic_trace_node, config: follower.yaml}\n"
@@ -149,6 +165,61 @@ TEST(ExperimentProcess, AnalysesTracesOfTwoProcessesAndKeepsFailedAndBrokenRunsA
   EXPECT_GE(std::stod(row.at(2)), 0.0) << "lateness";
   EXPECT_EQ(row.at(row.size() - 2), "running");
   EXPECT_EQ(row.back(), "0") << "no emergency stop";
+}
+
+// Verdicts to trust (issue 34): a run whose follower followed its first command 1.5 s after its
+// start (a late discovery, synthetic here) is invalid with the reason, not a result; a run whose
+// follower latched its speed reflex is unstable, the reflex named, its numbers otherwise clean.
+TEST(ExperimentProcess, ALateDiscoveryIsAnInvalidRunAndALatchedReflexAnUnstableOne) {
+  const std::string dir = make_temp_dir();
+  write_synthetic_pair(dir);
+  write_synthetic_scenario(dir, "late", "synthetic.follows_after_s: 1.5");
+  write_synthetic_scenario(dir, "reflex", "synthetic.reflex_after_s: 0.8");
+  write_file(dir + "/e.yaml",
+             "experiment:\n  name: verdicts\n  duration_s: 2.5\n  profiles: [none]\n"
+             "  runs:\n    - {name: late, scenario: late.yaml}\n    - {name: reflex, scenario: reflex.yaml}\n"
+             "  analysis: {settle_s: 0.2, hold_window_s: [0.5, 1.5], stable_max_safe_hold: 0.05}\n");
+  const ProcessResult r = run_experiment(dir + "/e.yaml", dir + "/out");
+  EXPECT_EQ(r.exit_status, 1) << r.output;
+  const std::string csv = read_file(dir + "/out/verdicts.csv");
+  ASSERT_EQ(lines_of(csv).size(), 3u) << csv;
+  EXPECT_EQ(csv_cell(csv, 0, "status"), "invalid") << csv;
+  EXPECT_GT(std::stod(csv_cell(csv, 0, "flows_matched_s")), 0.2) << csv;
+  EXPECT_NE(r.output.find("late / none: invalid: the flows matched "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("discovery was late"), std::string::npos) << r.output;
+  EXPECT_EQ(csv_cell(csv, 1, "status"), "ok") << csv;
+  EXPECT_EQ(csv_cell(csv, 1, "stable"), "no") << csv;
+  EXPECT_EQ(csv_cell(csv, 1, "reflex_latches"), "1") << csv;
+  EXPECT_NE(r.output.find("reflex / none: stable no: safety reflex latched 1 times (first: joint speed)"),
+            std::string::npos)
+      << r.output;
+}
+
+// --repeat 2: each repeat its own seed, folder and row, and the summary beside the CSV
+TEST(ExperimentProcess, RepeatsEachRunWithASeedOfItsOwnAndSumsThemUp) {
+  const std::string dir = make_temp_dir();
+  write_synthetic_pair(dir);
+  write_synthetic_scenario(dir, "good");
+  write_file(dir + "/e.yaml",
+             "experiment:\n  name: repeated\n  duration_s: 2\n  seed: 7\n  profiles: [none]\n"
+             "  runs:\n    - {name: good, scenario: good.yaml}\n"
+             "  analysis: {settle_s: 0.2, hold_window_s: [0.5, 1.5]}\n");
+  const ProcessResult r = run_experiment(dir + "/e.yaml", dir + "/out", {"--repeat", "2"});
+  EXPECT_EQ(r.exit_status, 0) << r.output;
+  const std::string csv = read_file(dir + "/out/repeated.csv");
+  ASSERT_EQ(lines_of(csv).size(), 3u) << csv;
+  for (size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(csv_cell(csv, k, "repeat"), std::to_string(k + 1)) << csv;
+    EXPECT_EQ(csv_cell(csv, k, "seed"), std::to_string(7 + k)) << csv;
+    EXPECT_EQ(csv_cell(csv, k, "status"), "ok") << csv;
+    EXPECT_TRUE(fs::exists(dir + "/out/good/none/r" + std::to_string(k + 1) + "/follower.csv")) << k;
+  }
+  const std::string summary = read_file(dir + "/out/repeated_summary.csv");
+  ASSERT_EQ(lines_of(summary).size(), 2u) << summary;
+  EXPECT_EQ(lines_of(summary).at(1).rfind("good,none,2,2,2,", 0), 0u) << summary;
+  // the synthetic pair's force error is 10 N in every repeat: no spread
+  EXPECT_NE(r.output.find("10±0"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("summary: " + dir + "/out/repeated_summary.csv"), std::string::npos) << r.output;
 }
 
 }  // namespace

@@ -16,7 +16,8 @@ namespace teleop::experiment {
 /// tracking errors in the hold window) or the two-arm box task (docs/box_task.md).
 enum class AnalysedTask { kStiffWall, kBoxTask };
 
-/// The `analysis:` section of an experiment file. Times are seconds after the first leader row.
+/// The `analysis:` section of an experiment file. Times are seconds after the operator began
+/// (operator_start_s: the leader's first row unless its operator waits to be in command).
 struct AnalysisConfig {
   AnalysedTask kind = AnalysedTask::kStiffWall;
   std::string leader = "leader";
@@ -33,6 +34,12 @@ struct AnalysisConfig {
   /// Largest MAD of the follower's contact force [N] (chatter on the wall: contact made and lost
   /// within a few cycles, which the wall hides from the joint positions).
   double stable_max_force_mad_n = 0.1;
+  /// Largest share of the follower's rows in safe hold (a run that sat in its watchdog's hold is
+  /// not a stable run, whatever its joints did).
+  double stable_max_safe_hold = 0.05;
+  /// Every flow of the run must have matched within this many seconds of the operator's start,
+  /// or the run is invalid (its operator moved before the robot followed); <0: settle_s.
+  double max_flows_matched_s = -1.0;
 };
 
 /// Samples of the running average behind mad_rad (the MAD definition's window).
@@ -55,6 +62,14 @@ struct RunMetrics {
   double tdpa_min_energy_j = kNone;    ///< minimum tdpa_w_j of both traces over the run
   double saturation_fraction = kNone;  ///< follower rows with torque_ratio >= kSaturatedTorqueRatio
   double safe_hold_fraction = kNone;   ///< follower rows in STATE_SAFE_HOLD
+  double reflex_latches = kNone;       ///< times the follower's safety reflex latched (its `reflex` column rising)
+  /// What tripped the first latch, as the follower's report's reflex_cause counts it
+  /// (follower/safety_reflex.h: 1 joint torque, 2 force, 3 moment, 4 joint speed); 0: none.
+  double reflex_cause = kNone;
+  /// When every flow of the run had matched [s after the operator began]: the later of the
+  /// leader's first `running` row (in command, its feedback fresh) and the follower's first
+  /// command in force; infinity: never; NaN: the traces cannot say.
+  double flows_matched_s = kNone;
 };
 
 /// The stability verdict: nullopt when mad_rad could not be computed.
@@ -64,13 +79,26 @@ struct Verdict {
   std::string why;
 };
 
+/// Time zero of a run's windows [s, on the traces' clock]: when the leader's simulated operator
+/// began (the first row whose `<prefix>operator_s` runs, less its value: leader.motion_starts),
+/// else the leader's first row (a trace without that column).
+double operator_start_s(const Trace& leader, const std::string& prefix = "");
+
 /// Computes the metrics. Follower values are interpolated at the leader's times where the two
 /// are compared. Throws TraceError naming the file and column when a column is missing or a
 /// trace has no rows.
 RunMetrics analyse(const Trace& leader, const Trace& follower, const AnalysisConfig& config);
 
 /// stable iff mad_rad <= stable_max_mad_rad, force_mad_n <= stable_max_force_mad_n (when
-/// known) and saturation_fraction <= stable_max_saturation.
+/// known), saturation_fraction <= stable_max_saturation, safe_hold_fraction <=
+/// stable_max_safe_hold and no reflex latched; `why` names every reason.
 Verdict judge_stability(const RunMetrics& metrics, const AnalysisConfig& config);
+
+/// Why the run's numbers cannot be trusted (empty: they can): a flow that matched late or never.
+std::string invalid_reason(const RunMetrics& metrics, const AnalysisConfig& config);
+
+/// The follower's safety record and when the flows matched, from the columns of one arm
+/// (`prefix` "" for a one-arm run, "<arm>_" for an arm of a group) into `m`.
+void analyse_run_health(const Trace& leader, const Trace& follower, const std::string& prefix, RunMetrics& m);
 
 }  // namespace teleop::experiment

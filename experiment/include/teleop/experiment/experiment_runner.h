@@ -2,6 +2,7 @@
 // Runs every run x profile of an experiment through the launcher, one after the other, and
 // analyses the traces they leave.
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,14 +27,22 @@ struct ExperimentOptions {
   /// Figures (plots.h): one per metric beside the CSV, each run's in its folder. A figure that
   /// cannot be drawn is a warning, never the experiment's failure.
   bool plots = true;
+  /// Each run x profile this many times, repeat k (from 1) with the impairment seed
+  /// experiment.seed + k - 1, its traces in <run>/<profile>/r<k>/; the table then adds each
+  /// cell's mean ± spread over its ok repeats and the figures error bars.
+  int repeat = 1;
 };
 
 /// One table row: a run under a profile.
 struct RunRow {
   std::string run;
   std::string profile;
+  /// Which repeat of run x profile (from 1) and the impairment seed it ran with.
+  int repeat = 1;
+  uint64_t seed = 0;
   /// "ok"; "failed" (a node failed to start, run or stop cleanly); "error" (the traces could not
-  /// be analysed; `note` says why).
+  /// be analysed; `note` says why); "invalid" (its flows matched late or never, so its numbers are
+  /// no result: invalid_reason() in `note`).
   std::string status;
   std::string note;
   std::string trace_dir;
@@ -45,6 +54,8 @@ struct RunRow {
 
 struct ExperimentResult {
   std::vector<RunRow> rows;
+  /// Repeats of each run x profile (ExperimentOptions::repeat).
+  int repeats = 1;
   std::string report_dir;
   std::string csv_path;
   /// Rows whose status is not "ok".
