@@ -110,6 +110,20 @@ std::string profile_cell(const RunRow& r, bool repeats) {
   return repeats ? r.profile + " r" + std::to_string(r.repeat) : r.profile;
 }
 
+// the width of the run and profile columns: their longest cell, at least as wide as before
+struct NameWidths {
+  size_t run = 17;
+  size_t profile = 15;
+};
+NameWidths name_widths(const std::vector<RunRow>& rows, bool repeats) {
+  NameWidths w;
+  for (const RunRow& r : rows) {
+    w.run = std::max(w.run, r.run.size());
+    w.profile = std::max(w.profile, profile_cell(r, repeats).size());
+  }
+  return w;
+}
+
 // the rows of one run x profile, in the order the first of each appears
 std::vector<std::vector<const RunRow*>> cells_of(const std::vector<RunRow>& rows) {
   std::vector<std::vector<const RunRow*>> cells;
@@ -188,11 +202,13 @@ std::string format_table(const std::vector<RunRow>& rows, const std::string& tit
   const std::vector<Column> metrics = columns(kind);
   std::string out = "\n== teleop experiment: " + title + " ==\n\n";
   const bool repeats = repeated(rows);
-  out += fmt::format("{:<17} {:<18} {:<7} {:<6}", "run", "profile", "status", "stable");
+  const NameWidths w = name_widths(rows, repeats);
+  out += fmt::format("{:<{}} {:<{}} {:<7} {:<6}", "run", w.run, "profile", w.profile, "status", "stable");
   for (const Column& c : metrics) out += fmt::format(" {:>{}}", c.heading, width(c));
   out += "\n";
   for (const auto& r : rows) {
-    out += fmt::format("{:<17} {:<18} {:<7} {:<6}", r.run, profile_cell(r, repeats), r.status, stable_word(r.verdict));
+    out += fmt::format("{:<{}} {:<{}} {:<7} {:<6}", r.run, w.run, profile_cell(r, repeats), w.profile, r.status,
+                       stable_word(r.verdict));
     for (const Column& c : metrics) out += fmt::format(" {:>{}}", cell(c, c.value(r)), width(c));
     out += "\n";
   }
@@ -219,11 +235,12 @@ std::string format_csv(const std::vector<RunRow>& rows, AnalysedTask kind) {
 std::string format_summary_table(const std::vector<RunRow>& rows, AnalysedTask kind) {
   const std::vector<Column> metrics = columns(kind);
   std::string out = "\nmean ± sample standard deviation over the ok repeats of each run x profile\n\n";
-  out += fmt::format("{:<17} {:<15} {:>5} {:>6}", "run", "profile", "ok", "stable");
+  const NameWidths w = name_widths(rows, false);
+  out += fmt::format("{:<{}} {:<{}} {:>5} {:>6}", "run", w.run, "profile", w.profile, "ok", "stable");
   for (const Column& c : metrics) out += fmt::format(" {:>{}}", c.heading, width(c) + 4);
   out += "\n";
   for (const auto& cell : cells_of(rows)) {
-    out += fmt::format("{:<17} {:<15} {:>5} {:>6}", cell.front()->run, cell.front()->profile,
+    out += fmt::format("{:<{}} {:<{}} {:>5} {:>6}", cell.front()->run, w.run, cell.front()->profile, w.profile,
                        fmt::format("{}/{}", ok_count(cell), cell.size()), fmt::format("{}/{}", stable_count(cell), ok_count(cell)));
     for (const Column& c : metrics) out += fmt::format(" {:>{}}", spread_cell(c, spread_of(c, cell)), width(c) + 4);
     out += "\n";

@@ -48,7 +48,8 @@ void analyse_run_health(const Trace& leader, const Trace& follower, const std::s
     const double followed = first_time(follower, prefix + "cmd_session", t0_s, [](double s) { return s > 0; });
     const double in_command = first_time(leader, prefix + "state", t0_s,
                                          [](double s) { return s == static_cast<double>(msg::STATE_RUNNING); });
-    const double matched = std::fmax(followed, in_command);
+    // flows that matched before the operator began (its clock waits for them) matched at 0
+    const double matched = std::fmax(0.0, std::fmax(followed, in_command));
     m.flows_matched_s = std::isnan(m.flows_matched_s) ? matched : std::fmax(m.flows_matched_s, matched);
   }
 }
