@@ -82,18 +82,25 @@ std::string profile_folder(const std::string& profile) {
 
 // the figures beside the CSV and in each run's folder; one that cannot be drawn is a warning: the
 // numbers are the experiment's result, not its figures
-void write_figures(const ExperimentResult& result) {
+// with the operator's start and the hold window on each run's, the verdict's limits on the metrics'
+void write_figures(const ExperimentResult& result, const AnalysisConfig& analysis) {
   const auto warn = [](const PlotError& e) { std::printf("[experiment] warning: no figures: %s\n", e.what()); };
   try {
     const PlotTool tool = find_plot_tool();
+    const RunMarks marks{analysis.leader, {{"hold", {analysis.hold.begin_s, analysis.hold.end_s}}}};
     for (const RunRow& row : result.rows) {
       try {
-        plot_run(tool, row.trace_dir, row.trace_dir);
+        plot_run(tool, row.trace_dir, row.trace_dir, marks);
       } catch (const PlotError& e) {
         warn(e);
       }
     }
-    plot_results(tool, result.csv_path);
+    plot_results(tool, result.csv_path,
+                 {{"mad_rad", analysis.stable_max_mad_rad},
+                  {"force_mad_n", analysis.stable_max_force_mad_n},
+                  {"saturation_fraction", analysis.stable_max_saturation},
+                  {"safe_hold_fraction", analysis.stable_max_safe_hold},
+                  {"flows_matched_s", flows_matched_limit_s(analysis)}});
   } catch (const PlotError& e) {
     warn(e);
   }
@@ -184,7 +191,7 @@ ExperimentResult run_experiment(const ExperimentConfig& config, const Experiment
   }
   write_text(result.csv_path, format_csv(result.rows, config.analysis.kind));
   if (result.repeats > 1) write_text(summary_csv_path(result.csv_path), format_summary_csv(result.rows, config.analysis.kind));
-  if (options.plots && !runtime::shutdown_requested()) write_figures(result);
+  if (options.plots && !runtime::shutdown_requested()) write_figures(result, config.analysis);
   return result;
 }
 

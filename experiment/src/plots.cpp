@@ -70,6 +70,13 @@ std::string python_with_matplotlib() {
   throw PlotError("no python3 with matplotlib (tried " + tried + "): " + kInstallHint);
 }
 
+// a number as the package reads it back: shortest round trip
+std::string number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
 bool is_trace(const fs::path& file) {
   std::ifstream in(file);
   std::string header;
@@ -113,17 +120,27 @@ std::vector<std::string> run_traces(const std::string& run_dir) {
   return traces;
 }
 
-void plot_run(const PlotTool& tool, const std::string& run_dir, const std::string& out_dir) {
+void plot_run(const PlotTool& tool, const std::string& run_dir, const std::string& out_dir, const RunMarks& marks) {
   run_traces(run_dir);
-  run_package(tool, {"run", run_dir, out_dir}, run_dir);
+  std::vector<std::string> args{"run", run_dir, out_dir};
+  if (!marks.leader.empty()) {
+    args.insert(args.end(), {"--leader", marks.leader});
+    for (const auto& [label, window] : marks.windows) {
+      args.insert(args.end(), {"--window", label + "=" + number_text(window.first) + "," + number_text(window.second)});
+    }
+  }
+  run_package(tool, args, run_dir);
 }
 
 void plot_recording_csv(const PlotTool& tool, const std::string& csv_dir, const std::string& out_dir) {
   run_package(tool, {"recording", csv_dir, out_dir}, csv_dir);
 }
 
-void plot_results(const PlotTool& tool, const std::string& csv_path) {
-  run_package(tool, {"results", csv_path}, csv_path);
+void plot_results(const PlotTool& tool, const std::string& csv_path,
+                  const std::vector<std::pair<std::string, double>>& limits) {
+  std::vector<std::string> args{"results", csv_path};
+  for (const auto& [metric, value] : limits) args.insert(args.end(), {"--limit", metric + "=" + number_text(value)});
+  run_package(tool, args, csv_path);
 }
 
 void plot_hand_study(const PlotTool& tool, const std::string& trace_csv, const std::string& out_dir) {

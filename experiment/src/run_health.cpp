@@ -55,7 +55,7 @@ void analyse_run_health(const Trace& leader, const Trace& follower, const std::s
 }
 
 std::string invalid_reason(const RunMetrics& m, const AnalysisConfig& config) {
-  const double limit_s = config.max_flows_matched_s >= 0 ? config.max_flows_matched_s : config.settle_s;
+  const double limit_s = flows_matched_limit_s(config);
   if (!(m.flows_matched_s > limit_s)) return {};
   if (std::isinf(m.flows_matched_s)) {
     return "the flows never all matched (the leader never in command, or the follower never followed a command): "

@@ -1,6 +1,7 @@
 """Figures of teleop runs (docs/plots.md); `teleop plot` and `teleop experiment` run this.
 
-  python3 scripts/teleop_plot run RUN_DIR [OUT_DIR]     the traces of one run (<node>.csv) -> OUT_DIR/*.png
+  python3 scripts/teleop_plot run RUN_DIR [OUT_DIR] [--leader NODE --window LABEL=BEGIN,END ...]
+                                                       the traces of one run (<node>.csv) -> OUT_DIR/*.png
   python3 scripts/teleop_plot recording CSV_DIR [OUT_DIR]
                                                        a recording exported by `teleop bag export` -> OUT_DIR/<topic>_*.png
   python3 scripts/teleop_plot results CSV [OUT_DIR]     an experiment's results -> OUT_DIR/<csv name>_<metric>.png
@@ -23,18 +24,42 @@ import sys
 EXIT_ERROR, EXIT_NO_MATPLOTLIB = 1, 3
 
 
+def window(text):
+    """LABEL=BEGIN,END -> (label, (begin, end))."""
+    try:
+        label, span = text.split("=", 1)
+        begin, end = (float(v) for v in span.split(","))
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(f"{text}: expected LABEL=BEGIN,END (seconds)") from e
+    return label, (begin, end)
+
+
+def limit(text):
+    """METRIC=VALUE -> (metric, value)."""
+    try:
+        metric, value = text.split("=", 1)
+        return metric, float(value)
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(f"{text}: expected METRIC=VALUE") from e
+
+
 def main():
     parser = argparse.ArgumentParser(prog="teleop_plot", description="PNG figures of teleop runs")
     commands = parser.add_subparsers(dest="command", required=True)
     run = commands.add_parser("run", help="the figures of one run's traces")
     run.add_argument("run_dir")
     run.add_argument("out_dir", nargs="?", help="default: RUN_DIR")
+    run.add_argument("--leader", help="the node whose operator's start the marks count from (its operator_s column)")
+    run.add_argument("--window", action="append", default=[], type=window, metavar="LABEL=BEGIN,END",
+                     help="shade this window, in seconds after the operator's start (an experiment's hold window)")
     recording = commands.add_parser("recording", help="the figures of a recording exported as CSV")
     recording.add_argument("csv_dir")
     recording.add_argument("out_dir", nargs="?", help="default: CSV_DIR")
     results = commands.add_parser("results", help="one figure per metric of an experiment's results CSV")
     results.add_argument("csv")
     results.add_argument("out_dir", nargs="?", help="default: the CSV's folder")
+    results.add_argument("--limit", action="append", default=[], type=limit, metavar="METRIC=VALUE",
+                         help="draw this metric's limit of the stability verdict (stable at or below it)")
     hand = commands.add_parser("hand", help="the hand study's figures from its trace CSV")
     hand.add_argument("csv")
     hand.add_argument("out_dir", nargs="?", help="default: the CSV's folder")
@@ -76,6 +101,12 @@ def main():
     try:
         if args.command == "run":
             traces = Run(args.run_dir)
+            if args.leader:
+                origin = traces.mark(args.leader, args.window)
+                marks = ", ".join(f"{label} {b:g}-{e:g} s" for label, (b, e) in args.window)
+                print(f"teleop plot: no trace of {args.leader} to mark the operator's start on" if origin is None
+                      else f"teleop plot: marked the operator's start at {origin:.3f} s"
+                           + (f" and {marks} after it" if marks else "") + f" ({args.run_dir})")
             for name, figure in FIGURES:
                 try:
                     write(figure(traces), args.out_dir or args.run_dir)
@@ -94,7 +125,7 @@ def main():
         else:
             stem = os.path.splitext(os.path.basename(args.csv))[0]
             out_dir = args.out_dir or os.path.dirname(os.path.abspath(args.csv))
-            write(results_figures(args.csv, stem), out_dir, stem + "_")
+            write(results_figures(args.csv, stem, dict(args.limit)), out_dir, stem + "_")
     except (TraceError, ResultsError, HandTraceError, FidelityTraceError, PartiTraceError, WipingCsvError,
             RecordingCsvError, OSError) as e:
         print(f"teleop plot: {e}", file=sys.stderr)

@@ -72,7 +72,18 @@ def mean_and_sd(values):
     return mean, (sum((v - mean) ** 2 for v in values) / (len(values) - 1)) ** 0.5
 
 
-def metric_figure(rows, metric, title):
+def draw_limit(ax, limit, tops):
+    """The verdict's limit as a dashed line; one far above every bar (a quiet run's MAD is a
+    thousandth of its limit) is said in a corner instead, so that the bars stay visible."""
+    top = max(tops, default=0.0)
+    if top > 0 and limit > 2 * top:
+        ax.text(0.01, 0.98, f"stable at or below {limit:g} (above every bar)", transform=ax.transAxes, color="red",
+                fontsize=8, va="top")
+        return
+    ax.axhline(limit, color="red", linestyle="--", linewidth=1.0, label=f"stable at or below {limit:g}")
+
+
+def metric_figure(rows, metric, title, limit=None):
     """Grouped bars: the mean over a cell's ok repeats, an error bar of one sample standard
     deviation where there are two or more."""
     runs, profiles = unique(r["run"] for r in rows), unique(r["profile"] for r in rows)
@@ -91,6 +102,8 @@ def metric_figure(rows, metric, title):
                   else shown.get((run, profile), "n/a") for run, (m, sd) in zip(runs, stats)]
         ax.bar_label(bars, labels, fontsize=8, padding=2)
     ax.axhline(0.0, color="black", linewidth=0.8)
+    if limit is not None:
+        draw_limit(ax, limit, [m + (sd or 0.0) for vs in values.values() for m, sd in [mean_and_sd(vs)]])
     ax.set_xticks(range(len(runs)), runs)
     # a group is 0.8 wide: a run alone does not fill the axes; room above the bars for their numbers
     ax.set_xlim(-1.0, len(runs))
@@ -102,10 +115,12 @@ def metric_figure(rows, metric, title):
     return fig
 
 
-def results_figures(path, title):
-    """[(metric, figure)] of the results CSV at `path`."""
+def results_figures(path, title, limits=None):
+    """[(metric, figure)] of the results CSV at `path`; `limits`: {metric: the stability
+    verdict's limit}, drawn on that metric's figure."""
+    limits = limits or {}
     rows = read_results(path)
     metrics = metrics_of(rows)
     if not metrics:
         raise ResultsError(f"{path}: no metric column with a number")
-    return [(metric, metric_figure(rows, metric, title)) for metric in metrics]
+    return [(metric, metric_figure(rows, metric, title, limits.get(metric))) for metric in metrics]

@@ -49,9 +49,27 @@ def norm(trace, prefix):
     return numpy.sqrt(sum(trace[prefix + a] ** 2 for a in AXES))
 
 
+def time_axis(run, axes):
+    """The time label, and on every axes the run's marks: the operator's start and the analysis'
+    windows (an experiment's hold window), when the run has them."""
+    axes[-1].set_xlabel(run.time_label())
+    if run.origin_s is None:
+        return
+    for ax in axes:
+        ax.axvline(run.origin_s, color="grey", linestyle=":", linewidth=1.0)
+        for label, (begin, end) in run.windows:
+            ax.axvspan(run.origin_s + begin, run.origin_s + end, color="grey", alpha=0.12, linewidth=0)
+    top = axes[0]
+    top.annotate("operator begins", (run.origin_s, 1.0), xycoords=("data", "axes fraction"), fontsize=7,
+                 color="grey", va="bottom")
+    for label, (begin, _) in run.windows:
+        top.annotate(label, (run.origin_s + begin, 1.0), xycoords=("data", "axes fraction"), fontsize=7,
+                     color="grey", va="bottom")
+
+
 def finish(run, axes):
     axes[0].legend(loc="best", fontsize=9)
-    axes[-1].set_xlabel(run.time_label())
+    time_axis(run, axes)
 
 
 def position(run):
@@ -112,7 +130,7 @@ def tdpa_energy(run):
         arm = arm_of(c, "tdpa_w_j")
         ax.set_ylabel(f"{t.node} {arm} [J]" if arm else f"{t.node} [J]")
         ax.legend(loc="upper right", fontsize=9)
-    axes[-1].set_xlabel(run.time_label())
+    time_axis(run, axes)
     return [("tdpa_energy", fig)]
 
 
@@ -133,7 +151,7 @@ def lateness(run):
         ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
         ax.set_ylabel(f"{t.node} [µs]")
         ax.legend(loc="upper right", fontsize=9)
-    axes[-1].set_xlabel(run.time_label())
+    time_axis(run, axes)
     return [("lateness", fig)]
 
 
@@ -149,7 +167,7 @@ def states(run):
         ax.set_ylim(-0.5, len(STATE_NAMES) - 0.5)
         arm = arm_of(c, "state")
         ax.set_ylabel(f"{t.node}\n{arm}" if arm else t.node)
-    axes[-1].set_xlabel(run.time_label())
+    time_axis(run, axes)
     return [("states", fig)]
 
 

@@ -84,14 +84,37 @@ class Run:
             raise TraceError(f"{run_dir}: no trace in this directory (expected <node>.csv files with a t_s column, "
                              "as `teleop launch --trace-dir` or `teleop experiment` write them)")
         self.dir = run_dir
-        # <run>/<profile> of an experiment's run dir
-        self.title = " / ".join(os.path.abspath(run_dir).split(os.sep)[-2:])
+        # <run>/<profile> of an experiment's run dir, <run>/<profile>/r<k> of a repeat
+        parts = os.path.abspath(run_dir).split(os.sep)
+        repeat = len(parts) >= 3 and parts[-1][:1] == "r" and parts[-1][1:].isdigit()
+        self.title = " / ".join(parts[-3:] if repeat else parts[-2:])
         self.traces = [t for t in (Trace(p) for p in files) if t.rows() > 0]
         if not self.traces:
             raise TraceError(f"{run_dir}: every trace is empty (a header, no rows)")
         # the wall clock lines up nodes of several hosts; traces without it share the monotonic one
         self.clock = "wall_s" if all(t.has("wall_s") for t in self.traces) else "t_s"
         self.start_s = min(t[self.clock][0] for t in self.traces)
+        # set by mark(): when the operator began [s on time()], and windows [s after it]
+        self.origin_s = None
+        self.windows = []
+
+    def mark(self, leader, windows):
+        """Marks the operator's start, read from the trace of node `leader` (its first
+        `operator_s` column: the first row where that clock runs, less its value; without one its
+        first row), and `windows` [(label, (begin, end))] in seconds after it. Returns the start,
+        or None when no trace is the leader's."""
+        trace = next((t for t in self.traces if t.node == leader), None)
+        if trace is None:
+            return None
+        time = self.time(trace)
+        self.origin_s = float(time[0])
+        clock = next((n for n in trace.names if n.endswith("operator_s")), None)
+        if clock is not None:
+            running = numpy.nonzero(trace[clock] > 0)[0]
+            if len(running) > 0:
+                self.origin_s = float(time[running[0]] - trace[clock][running[0]])
+        self.windows = windows
+        return self.origin_s
 
     def time(self, trace):
         """Seconds since the run's first row, on the clock every trace has."""

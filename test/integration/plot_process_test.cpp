@@ -42,6 +42,10 @@ TEST(PlotProcess, TheExperimentDrawsItsRunsAndMetricsAndPlotDrawsARunAgain) {
   // every figure drawn (a node's own warnings, a loop stalled on a loaded host, are not the plot's)
   EXPECT_EQ(experiment.output.find("[experiment] warning"), std::string::npos) << experiment.output;
   const std::string run_dir = dir + "/out/pfc_tdpa/none";
+  // the run's figures mark when its operator began (the leader's operator_s) and the hold window
+  EXPECT_NE(experiment.output.find("teleop plot: marked the operator's start at "), std::string::npos) << experiment.output;
+  EXPECT_NE(experiment.output.find(" and hold 1.5-2.5 s after it (" + run_dir + ")"), std::string::npos)
+      << experiment.output;
   // and metrics that are not zero in any run: their bars show
   std::vector<std::string> figures = pngs(run_dir, "", kRunFigures);
   for (const std::string& f : pngs(dir + "/out", "tiny_", {"force_felt_n", "tracking_rmse_m", "mad_rad"})) {

@@ -94,6 +94,11 @@ RunMetrics analyse(const Trace& leader, const Trace& follower, const AnalysisCon
 /// stable_max_safe_hold and no reflex latched; `why` names every reason.
 Verdict judge_stability(const RunMetrics& metrics, const AnalysisConfig& config);
 
+/// The latest flows_matched_s of a valid run: max_flows_matched_s, or settle_s when not given.
+inline double flows_matched_limit_s(const AnalysisConfig& config) {
+  return config.max_flows_matched_s >= 0 ? config.max_flows_matched_s : config.settle_s;
+}
+
 /// Why the run's numbers cannot be trusted (empty: they can): a flow that matched late or never.
 std::string invalid_reason(const RunMetrics& metrics, const AnalysisConfig& config);
 

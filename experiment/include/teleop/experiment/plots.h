@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace teleop::experiment {
@@ -33,9 +34,16 @@ PlotTool find_plot_tool();
 /// Throws PlotError naming the dir when it does not exist or holds no trace.
 std::vector<std::string> run_traces(const std::string& run_dir);
 
+/// What a run's figures mark: the operator's start, read from the trace of node `leader` (its
+/// operator_s clock), and windows [s after it] shaded with their labels. No leader: no marks.
+struct RunMarks {
+  std::string leader;
+  std::vector<std::pair<std::string, std::pair<double, double>>> windows;
+};
+
 /// Writes the figures of the run in `run_dir` (run_traces() must find some) into `out_dir`,
-/// created if needed. Throws PlotError.
-void plot_run(const PlotTool& tool, const std::string& run_dir, const std::string& out_dir);
+/// created if needed, with `marks`. Throws PlotError.
+void plot_run(const PlotTool& tool, const std::string& run_dir, const std::string& out_dir, const RunMarks& marks = {});
 
 /// Writes the figures of a recording exported as CSV into `csv_dir` (tools' export_csv) into
 /// `out_dir`: each joint state topic's positions, each wrench's force and torque, each joint
@@ -43,8 +51,10 @@ void plot_run(const PlotTool& tool, const std::string& run_dir, const std::strin
 void plot_recording_csv(const PlotTool& tool, const std::string& csv_dir, const std::string& out_dir);
 
 /// Writes one figure per metric of an experiment's results CSV beside it, as
-/// `<csv stem>_<metric>.png`. Throws PlotError.
-void plot_results(const PlotTool& tool, const std::string& csv_path);
+/// `<csv stem>_<metric>.png`, each metric of `limits` with its limit drawn (the stability
+/// verdict's: stable at or below it). Throws PlotError.
+void plot_results(const PlotTool& tool, const std::string& csv_path,
+                  const std::vector<std::pair<std::string, double>>& limits = {});
 
 /// Writes the hand study's figures of its trace CSV (docs/hand.md) into `out_dir`: the index
 /// tip's force over time per run (the paper's Fig. 4) and two joints' positions (Figs. 5, 6).
