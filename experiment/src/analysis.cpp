@@ -79,8 +79,9 @@ RunMetrics analyse(const Trace& leader, const Trace& follower, const AnalysisCon
   const auto joints = follower.numbered("q_");
   for (const auto* q : joints) mad_sum += mean_absolute_deviation_in(t_follower, *q, kMadWindowSamples, hold);
   m.mad_rad = mad_sum / static_cast<double>(joints.size());
-  m.force_mad_n =
-      mean_absolute_deviation_in(t_follower, norm(axes(follower, "f_ext_")), kMadWindowSamples, hold);
+  const std::vector<double> contact_force = norm(axes(follower, "f_ext_"));
+  m.force_mad_n = mean_absolute_deviation_in(t_follower, contact_force, kMadWindowSamples, hold);
+  analyse_contact_transient(t_follower, contact_force, hold, m);
   double ptp_squared = 0;
   for (const auto& axis : x_follower) ptp_squared += std::pow(peak_to_peak_in(t_follower, axis, hold), 2);
   m.hold_ptp_m = std::sqrt(ptp_squared);

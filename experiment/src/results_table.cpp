@@ -44,6 +44,9 @@ std::vector<Column> stiff_wall_columns() {
       mad_column(),
       {"f_mad_N", "force_mad_n", [](const RunRow& r) { return r.metrics.force_mad_n; }},
       {"ptp_m", "hold_ptp_m", [](const RunRow& r) { return r.metrics.hold_ptp_m; }},
+      {"peak_N", "impact_peak_n", [](const RunRow& r) { return r.metrics.impact_peak_n; }},
+      {"over", "overshoot_fraction", [](const RunRow& r) { return r.metrics.overshoot_fraction; }},
+      {"settle_s", "settle_time_s", [](const RunRow& r) { return r.metrics.settle_time_s; }},
   };
   for (Column& safety : safety_columns()) c.push_back(std::move(safety));
   return c;

@@ -216,6 +216,26 @@ TEST(Analyse, CountsTimeFromWhenTheOperatorBegan) {
   EXPECT_NEAR(analyse(waited, follower_trace(), AnalysisConfig{}).force_felt_n, 10.0 * 3.3 / 4.0, 0.01);
 }
 
+TEST(Analyse, MeasuresTheContactsPeakOvershootAndSettlingTime) {
+  // contact at 1 s with 18 N, 12 N from 1.5 s (outside 10 % of the held 10 N), 10 N from 2 s on
+  Trace follower = with_column(follower_trace(), "f_ext_x", [](size_t, double t) {
+    return t < 1.0 ? 0.0 : t < 1.5 ? 18.0 : t < 2.0 ? 12.0 : 10.0;
+  });
+  follower = with_column(with_column(follower, "f_ext_y", constant(0)), "f_ext_z", constant(0));
+  const RunMetrics m = analyse(leader_trace(), follower, AnalysisConfig{});
+  EXPECT_NEAR(m.impact_peak_n, 18.0, 1e-9);
+  EXPECT_NEAR(m.overshoot_fraction, 0.8, 1e-9);
+  EXPECT_NEAR(m.settle_time_s, 2.0, 2e-3);
+  // a bounce late in the hold window: settled only after it; one at the window's end: never
+  const Trace late = with_column(follower, "f_ext_x", [](size_t, double t) { return t > 9.0 && t < 9.1 ? 3.0 : 10.0; });
+  EXPECT_NEAR(analyse(leader_trace(), late, AnalysisConfig{}).settle_time_s, 9.1, 2e-3);
+  const Trace bouncing = with_column(follower, "f_ext_x", [](size_t, double t) { return t > 9.95 ? 3.0 : 10.0; });
+  EXPECT_TRUE(std::isinf(analyse(leader_trace(), bouncing, AnalysisConfig{}).settle_time_s));
+  // no contact held: no transient
+  const Trace free = with_column(follower, "f_ext_x", constant(0.2));
+  EXPECT_TRUE(std::isnan(analyse(leader_trace(), free, AnalysisConfig{}).impact_peak_n));
+}
+
 TEST(RunHealth, TheFlowsMatchWhenTheLeaderIsInCommandAndTheFollowerFollowsItsFirstCommand) {
   const Trace leader = with_column(leader_trace(), "state", [](size_t, double t) {
     return t >= 0.5 ? msg::STATE_RUNNING : msg::STATE_STARTING;

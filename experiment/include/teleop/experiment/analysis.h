@@ -70,7 +70,18 @@ struct RunMetrics {
   /// leader's first `running` row (in command, its feedback fresh) and the follower's first
   /// command in force; infinity: never; NaN: the traces cannot say.
   double flows_matched_s = kNone;
+  // the contact's transient (stiff wall; NaN without a contact held in the hold window)
+  double impact_peak_n = kNone;       ///< largest |f_ext| from the operator's start to the hold window's end
+  double overshoot_fraction = kNone;  ///< impact_peak_n over the hold window's mean |f_ext|, less 1
+  /// From when (s after the operator began) |f_ext| stays within kSettleBand of the hold
+  /// window's mean until the window ends.
+  double settle_time_s = kNone;
 };
+
+/// A hold window's mean contact force below this [N] is no contact: no transient is measured.
+inline constexpr double kContactForceN = 1.0;
+/// The settling band, a fraction of the held force.
+inline constexpr double kSettleBand = 0.1;
 
 /// The stability verdict: nullopt when mad_rad could not be computed.
 struct Verdict {
@@ -101,6 +112,11 @@ inline double flows_matched_limit_s(const AnalysisConfig& config) {
 
 /// Why the run's numbers cannot be trusted (empty: they can): a flow that matched late or never.
 std::string invalid_reason(const RunMetrics& metrics, const AnalysisConfig& config);
+
+/// The contact's transient (RunMetrics::impact_peak_n, overshoot_fraction, settle_time_s) from
+/// the follower's contact force norm `force_n` at times `t_rel_s` (s after the operator began).
+void analyse_contact_transient(const std::vector<double>& t_rel_s, const std::vector<double>& force_n, Window hold,
+                               RunMetrics& m);
 
 /// The follower's safety record and when the flows matched, from the columns of one arm
 /// (`prefix` "" for a one-arm run, "<arm>_" for an arm of a group) into `m`.
