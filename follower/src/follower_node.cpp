@@ -410,7 +410,8 @@ void FollowerNode::fill_report(runtime::NodeReport& report) const {
 
 void FollowerNode::trace_columns(std::vector<std::string>& columns) const {
   for (const char* c : {"x_x", "x_y", "x_z", "f_ext_x", "f_ext_y", "f_ext_z", "f_est_x", "f_est_y", "f_est_z", "tdpa_w_j",
-                        "tdpa_drift_m", "torque_ratio", "state", "cmd_session", "cmd_seq", "reflex", "reflex_ratio"}) {
+                        "tdpa_drift_m", "torque_ratio", "state", "cmd_session", "cmd_seq", "reflex", "reflex_ratio",
+                        "tdpa_dissipated_j", "tdpa_acting"}) {
     columns.emplace_back(c);
   }
   for (size_t i = 0; i < config_.joints; ++i) columns.push_back("q_" + std::to_string(i));
@@ -433,6 +434,7 @@ void FollowerNode::trace_row(double* row) const {
   *row++ = reflex_.latched() ? static_cast<double>(reflex_.last_cause()) : 0.0;
   // this cycle's largest load or speed against its threshold (over 1: the reflex must be latched)
   *row++ = reflex_.ratio();
+  row = runtime::trace_tdpa_work(architecture_->tdpa(), row);
   std::copy_n(arm_.q_rad.begin(), config_.joints, row);
 }
 

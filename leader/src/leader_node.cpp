@@ -316,7 +316,7 @@ void LeaderNode::fill_report(runtime::NodeReport& report) const {
 
 void LeaderNode::trace_columns(std::vector<std::string>& columns) const {
   for (const char* c : {"x_cmd_x", "x_cmd_y", "x_cmd_z", "f_felt_x", "f_felt_y", "f_felt_z", "tdpa_w_j", "feedback_fade", "state",
-                        "peer_session", "operator_s"}) {
+                        "peer_session", "operator_s", "tdpa_dissipated_j", "tdpa_acting"}) {
     columns.emplace_back(c);
   }
   for (size_t i = 0; i < config_.joints; ++i) columns.push_back("q_dev_" + std::to_string(i));
@@ -345,6 +345,7 @@ void LeaderNode::trace_row(double* row) const {
   *row++ = static_cast<double>(follower_state_.session().session());
   // the simulated operator's clock (leader.motion_starts): 0 until its motion starts
   *row++ = operator_s_;
+  row = runtime::trace_tdpa_work(architecture_->tdpa(), row);
   row = std::copy_n(device_.q_rad.begin(), config_.joints, row);
   row = std::copy_n(device_.dq_radps.begin(), config_.joints, row);
   std::copy_n(renderer_.output().begin(), config_.joints, row);

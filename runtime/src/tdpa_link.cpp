@@ -70,14 +70,25 @@ double TdpaLink::observed_energy_j() const {
   return w;
 }
 
+double TdpaLink::dissipated_energy_j() const {
+  double dissipated = 0.0;
+  for (std::size_t i = 0; i < port_.config().channels; ++i) dissipated += port_.dissipated_energy_j(i);
+  return dissipated;
+}
+
+bool TdpaLink::acting() const {
+  for (std::size_t i = 0; i < port_.config().channels; ++i) {
+    if (port_.damping(i) > 0.0) return true;
+  }
+  return false;
+}
+
 void TdpaLink::fill_report(runtime::NodeReport& report) const {
   report.add(out_);
   report.add(in_);
   const auto& c = port_.counters();
-  double dissipated = 0.0;
-  for (std::size_t i = 0; i < port_.config().channels; ++i) dissipated += port_.dissipated_energy_j(i);
   report.counters.emplace_back("tdpa_min_observed_energy_j", port_.min_observed_energy_j());
-  report.counters.emplace_back("tdpa_dissipated_j", dissipated);
+  report.counters.emplace_back("tdpa_dissipated_j", dissipated_energy_j());
   report.counters.emplace_back("tdpa_deficit_cycles", static_cast<double>(c.deficits));
   report.counters.emplace_back("tdpa_damper_saturations", static_cast<double>(c.saturations));
   report.counters.emplace_back("tdpa_non_finite_inputs", static_cast<double>(c.non_finite_inputs));

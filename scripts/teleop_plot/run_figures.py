@@ -123,10 +123,20 @@ def tdpa_energy(run):
     if not lines:
         raise Skip("no TDPA energy (tdpa_w_j absent or all NaN: an architecture without TDPA)")
     # one axes per side: each on its own scale (the two sides' energies differ by orders of magnitude)
-    fig, axes = new_figure(len(lines), titled("TDPA: observed energy of the passivity observers (>= 0: passive)", run))
+    fig, axes = new_figure(len(lines), titled("TDPA: observed energy (>= 0: passive) and what the controller dissipated",
+                                              run))
     for ax, (t, c) in zip(axes, lines):
-        ax.plot(run.time(t), t[c], color=colour_of(t), label=f"{t.node} {c}")
+        time = run.time(t)
+        ax.plot(time, t[c], color=colour_of(t), label=f"{t.node} {c} (observed)")
         ax.axhline(0.0, color="black", linewidth=0.8)
+        prefix = c[:-len("tdpa_w_j")]
+        # traces since issue 34: the energy the controller took out so far, and when it acted
+        if t.has(prefix + "tdpa_dissipated_j") and numpy.isfinite(t[prefix + "tdpa_dissipated_j"]).any():
+            ax.plot(time, t[prefix + "tdpa_dissipated_j"], color="black", linestyle="--", linewidth=1.0,
+                    label=f"{t.node} dissipated by its controller")
+        if t.has(prefix + "tdpa_acting"):
+            ax.fill_between(time, 0, 1, where=t[prefix + "tdpa_acting"] > 0.5, transform=ax.get_xaxis_transform(),
+                            color="red", alpha=0.15, linewidth=0, label="controller acting")
         arm = arm_of(c, "tdpa_w_j")
         ax.set_ylabel(f"{t.node} {arm} [J]" if arm else f"{t.node} [J]")
         ax.legend(loc="upper right", fontsize=9)

@@ -133,6 +133,9 @@ uint64_t run(const std::string& architecture) {
   std::vector<std::string> columns;
   node.trace_columns(columns);
   std::vector<double> row(columns.size());
+  // the passivity controller's work, traced since the hashes were taken (issue 34), is left out
+  test::HashedColumns hashed(columns, {"tdpa_dissipated_j", "tdpa_acting"});
+  EXPECT_EQ(hashed.missing(), 0u) << "the follower no longer traces a column this test leaves out";
   test::TraceHash hash{"follower_" + architecture};
   std::array<double, kJoints> home{};
   Eigen::Vector3d x0 = Eigen::Vector3d::Zero();
@@ -152,7 +155,7 @@ uint64_t run(const std::string& architecture) {
     }
     node.cycle(harness.tick());
     node.trace_row(row.data());
-    hash.add(row);
+    hash.add(hashed.of(row));
   }
   std::printf("%s: %llu rows, trace hash 0x%016llx\n", architecture.c_str(),
               static_cast<unsigned long long>(hash.rows()), static_cast<unsigned long long>(hash.value()));

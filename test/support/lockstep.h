@@ -8,15 +8,18 @@
 // (DeliveryFence, below). The trace is folded into a 64-bit FNV-1a hash of the
 // rows' bytes, so a golden hash taken before a refactoring tells whether it changed a bit.
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <initializer_list>
 #include <span>
 #include <string>
 #include <string_view>
 #include <thread>
+#include <vector>
 
 #include "node_harness.h"
 #include "teleop/transport/reader.h"
@@ -104,6 +107,31 @@ class DeliveryFence {
   transport::Publication<msg::NodeStatus> fence_;
   transport::Reader<msg::NodeStatus> seen_;
   msg::NodeStatus sample_;
+};
+
+/// The columns of a trace that a hash compares: all but those added after its hashes were taken,
+/// so that the columns they were taken over still compare bit for bit.
+class HashedColumns {
+ public:
+  HashedColumns(const std::vector<std::string>& columns, std::initializer_list<std::string_view> added_since) {
+    for (size_t i = 0; i < columns.size(); ++i) {
+      if (std::find(added_since.begin(), added_since.end(), columns[i]) == added_since.end()) kept_.push_back(i);
+    }
+    missing_ = added_since.size() - (columns.size() - kept_.size());
+    values_.resize(kept_.size());
+  }
+  /// Names in `added_since` the trace does not have (0: the list is the trace's).
+  size_t missing() const { return missing_; }
+  /// The kept values of `row`.
+  std::span<const double> of(std::span<const double> row) {
+    for (size_t k = 0; k < kept_.size(); ++k) values_[k] = row[kept_[k]];
+    return values_;
+  }
+
+ private:
+  std::vector<size_t> kept_;
+  std::vector<double> values_;
+  size_t missing_ = 0;
 };
 
 /// 64-bit FNV-1a over the bytes of trace rows: equal hashes, equal traces (to the bit). With

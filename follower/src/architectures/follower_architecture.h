@@ -14,6 +14,7 @@
 #include "teleop/control/types.h"
 #include "teleop/follower/command_validator.h"
 #include "teleop/runtime/node_report.h"
+#include "teleop/runtime/tdpa_link.h"
 
 namespace teleop::follower {
 
@@ -32,6 +33,8 @@ class FollowerArchitecture {
 
   /// The channel's observed energy [J]; NaN without a TDPA channel.
   virtual double observed_energy_j() const { return std::nan(""); }
+  /// The channel's passivity link (its controller's work is traced); null without one.
+  virtual const runtime::TdpaLink* tdpa() const { return nullptr; }
   /// How far the reference drifted from the received poses [m]; 0 without a correction.
   virtual double position_drift_m() const { return 0.0; }
   virtual void fill_status(msg::NodeStatus& /*status*/) const {}

@@ -21,6 +21,7 @@ class PfcFollower final : public FollowerArchitecture {
   const ValidCommand* correct(const ValidCommand& active, bool running, const control::Vector6& wrench) override;
   void restart() override { passive_.reset(); }
   double observed_energy_j() const override { return tdpa_.observed_energy_j(); }
+  const runtime::TdpaLink* tdpa() const override { return &tdpa_; }
   double position_drift_m() const override { return passive_.position_drift_m(); }
   void fill_status(msg::NodeStatus& status) const override { status.tdpa_energy_j(tdpa_.observed_energy_j()); }
   void fill_report(runtime::NodeReport& report) const override;

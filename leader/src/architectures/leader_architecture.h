@@ -15,6 +15,7 @@
 #include "../leader_config.h"
 #include "teleop/common/joint_model.h"
 #include "teleop/runtime/node_report.h"
+#include "teleop/runtime/tdpa_link.h"
 #include "teleop/runtime/node_runner.h"
 #include "teleop/transport/publication.h"
 #include "teleop/transport/subscription.h"
@@ -74,6 +75,8 @@ class LeaderArchitecture {
 
   /// The channel's observed energy [J]; NaN without a TDPA channel.
   virtual double observed_energy_j() const { return std::nan(""); }
+  /// The channel's passivity link (its controller's work is traced); null without one.
+  virtual const runtime::TdpaLink* tdpa() const { return nullptr; }
   virtual void fill_status(msg::NodeStatus& /*status*/) const {}
   /// The command writer's line of the report.
   virtual void report_command(runtime::NodeReport& /*report*/) const {}

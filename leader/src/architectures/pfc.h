@@ -23,6 +23,7 @@ class PfcLeader final : public LeaderArchitecture {
   void send(const MappedDevice& device) override;
   bool feedback(const MappedDevice& device, int64_t now_ns, JointVector& feedback, uint64_t& rejected) override;
   double observed_energy_j() const override { return tdpa_.observed_energy_j(); }
+  const runtime::TdpaLink* tdpa() const override { return &tdpa_; }
   void fill_status(msg::NodeStatus& status) const override { status.tdpa_energy_j(tdpa_.observed_energy_j()); }
   void report_command(runtime::NodeReport& report) const override { report.add(command_); }
   void report_channel(runtime::NodeReport& report) const override { tdpa_.fill_report(report); }

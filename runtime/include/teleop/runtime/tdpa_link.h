@@ -7,6 +7,7 @@
 
 #include <teleop/msg/status.h>
 
+#include <limits>
 #include <span>
 #include <string>
 
@@ -41,6 +42,10 @@ class TdpaLink {
   const control::PassivityPort& port() const { return port_; }
   /// The smallest observed energy over the channels after the last update [J].
   double observed_energy_j() const;
+  /// The energy the passivity controller has dissipated so far, over the channels [J].
+  double dissipated_energy_j() const;
+  /// Whether the controller acted in the last update (a damper on in some channel).
+  bool acting() const;
   void fill_report(runtime::NodeReport& report) const;
 
  private:
@@ -50,5 +55,14 @@ class TdpaLink {
   control::EnergyPacket received_;
   uint64_t invalid_packets_ = 0;
 };
+
+/// A node's trace columns tdpa_dissipated_j and tdpa_acting (1 while the controller acts, else 0)
+/// from `link`, NaN without one, written at `row`; returns the position after them.
+inline double* trace_tdpa_work(const TdpaLink* link, double* row) {
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  *row++ = link != nullptr ? link->dissipated_energy_j() : none;
+  *row++ = link != nullptr ? (link->acting() ? 1.0 : 0.0) : none;
+  return row;
+}
 
 }  // namespace teleop::runtime
