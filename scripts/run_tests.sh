@@ -25,8 +25,8 @@ failure_digest() {
   local log="build/$1/Testing/Temporary/LastTest.log"
   [ -f "$log" ] || return 0
   echo "run_tests: stage $1 failed; its failures, again:"
-  grep -a -A8 -E ': Failure$|^\[  FAILED  \]|run_in_vm: FAIL|ERROR: (Address|Leak|Thread)Sanitizer|runtime error:' \
-    "$log" | head -200 || true
+  grep -a -A6 -E '^[^ ].*: Failure$|^==[0-9]+==ERROR: |runtime error: ' "$log" | head -150 || true
+  grep -a -E '^\[  FAILED  \] [^ ]+ \(' "$log" | sort -u || true
 }
 
 stage setup ./scripts/setup.sh
