@@ -3,7 +3,6 @@
 #include "teleop/runtime/command_authority.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <functional>

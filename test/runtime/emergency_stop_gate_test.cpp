@@ -3,7 +3,6 @@
 #include "emergency_stop_gate.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>

@@ -4,7 +4,6 @@
 #include "peer_agreement.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <string>
