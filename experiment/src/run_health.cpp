@@ -36,7 +36,8 @@ void analyse_run_health(const Trace& leader, const Trace& follower, const std::s
     double before = 0;
     for (const double cause : reflex) {
       if (cause > 0 && before <= 0) {
-        if (latches == 0) m.reflex_cause = cause;
+        // the first latch of the run (of its first arm that latched, on a two-arm robot)
+        if (std::isnan(m.reflex_cause) || m.reflex_cause == 0) m.reflex_cause = cause;
         ++latches;
       }
       before = cause;

@@ -236,6 +236,21 @@ TEST(Analyse, MeasuresTheContactsPeakOvershootAndSettlingTime) {
   EXPECT_TRUE(std::isnan(analyse(leader_trace(), free, AnalysisConfig{}).impact_peak_n));
 }
 
+TEST(RunHealth, EachArmsLatchesCountAndTheFirstArmThatLatchedNamesTheCause) {
+  Trace follower = with_column(follower_trace(), "left_reflex", from(3.0, 4.0));  // joint speed
+  follower = with_column(follower, "right_reflex", from(5.0, 2.0));              // force
+  RunMetrics m;
+  analyse_run_health(leader_trace(), follower, "left_", m);
+  analyse_run_health(leader_trace(), follower, "right_", m);
+  EXPECT_EQ(m.reflex_latches, 2.0);
+  EXPECT_EQ(m.reflex_cause, 4.0);
+  RunMetrics only_right;
+  analyse_run_health(leader_trace(), with_column(follower, "left_reflex", constant(0)), "left_", only_right);
+  analyse_run_health(leader_trace(), follower, "right_", only_right);
+  EXPECT_EQ(only_right.reflex_latches, 1.0);
+  EXPECT_EQ(only_right.reflex_cause, 2.0);
+}
+
 TEST(RunHealth, TheFlowsMatchWhenTheLeaderIsInCommandAndTheFollowerFollowsItsFirstCommand) {
   const Trace leader = with_column(leader_trace(), "state", [](size_t, double t) {
     return t >= 0.5 ? msg::STATE_RUNNING : msg::STATE_STARTING;
